@@ -1,0 +1,63 @@
+#pragma once
+// Step 3 of METHOD.md: depth clustering (Bogoslavskyi & Stachniss), as LeGO-LOAM's
+// labelComponents: breadth-first search over the 4 direct neighbours, columns wrapping.
+
+#include <cstdint>
+#include <vector>
+
+#include "adaptive_lego_loam/core/params.h"
+#include "adaptive_lego_loam/core/range_image.h"
+
+namespace adaptive_lego_loam {
+
+// Cluster labels over a range image, shared by every clustering in the core.
+struct ClusterLabels {
+  static constexpr int32_t kNone = 0;  // empty, or excluded (ground)
+  std::vector<int32_t> label;          // per cell: kNone or a cluster id >= 1
+  std::vector<int32_t> size;           // per cluster id (entry 0 unused)
+  std::vector<uint8_t> kept;           // per cluster id: 1 when the cluster passed its size rule
+
+  int clusters() const { return static_cast<int>(size.size()) - 1; }
+  bool point_kept(int cell) const { return label[cell] != kNone && kept[label[cell]]; }
+  int kept_clusters() const;
+  int kept_points() const;
+};
+
+// The angle criterion: with d1 >= d2 the two ranges and alpha the angle between their beams,
+// beta = atan2(d2 sin(alpha), d1 - d2 cos(alpha)); the points join when beta > beta0.
+// beta = atan2(y, x) with y = d2 sin(alpha) > 0, so beta > beta0 (beta0 in (0, pi/2)) is
+// cot(beta) < cot(beta0), i.e. x sin(beta0) < y cos(beta0): no trigonometry per pair.
+inline bool depth_points_join(float range_a, float range_b, float sin_alpha, float cos_alpha,
+                              float sin_beta0, float cos_beta0) {
+  const float d1 = range_a > range_b ? range_a : range_b;
+  const float d2 = range_a > range_b ? range_b : range_a;
+  return (d1 - d2 * cos_alpha) * sin_beta0 < d2 * sin_alpha * cos_beta0;
+}
+
+class DepthClustering {
+ public:
+  explicit DepthClustering(const RangeImageGeometry& geometry);
+  // Clusters the occupied, not excluded cells of `image` with threshold beta0 (degrees) and
+  // marks which clusters `rule` keeps. `excluded` (one flag per cell, may be empty) holds cells
+  // that take no part, e.g. ground.
+  void cluster(const RangeImage& image, const std::vector<uint8_t>& excluded, double beta0_deg,
+               const ClusterSizeRule& rule, ClusterLabels& out);
+
+ private:
+  RangeImageGeometry geometry_;
+  std::vector<float> sin_row_gap_, cos_row_gap_;  // between row r and r + 1
+  float sin_col_step_ = 0.f, cos_col_step_ = 0.f;
+  bool passes(const ClusterSizeRule& rule, int size);
+
+  struct QueuedCell {
+    int32_t cell, row, col;
+  };
+  std::vector<QueuedCell> queue_;  // reused between scans; holds the last cluster's cells
+  std::vector<uint8_t> free_;
+  std::vector<uint8_t> row_seen_;
+};
+
+// Marks kept[] for every cluster of `labels` by `rule`, counting the rows each cluster spans.
+void apply_size_rule(const RangeImage& image, const ClusterSizeRule& rule, ClusterLabels& labels);
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,100 @@
+#pragma once
+// One params struct per stage, filled from one YAML file per sensor (config/*.yaml).
+// No sensor constant is compiled in: the defaults below only fill keys a file leaves out.
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace adaptive_lego_loam {
+
+// A config value that is missing, malformed or out of range. The message names the file, the
+// key and what was expected.
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class RowSource { kAuto, kRing, kElevation };
+
+struct SensorParams {
+  std::string name = "unnamed";
+  int rows = 16;
+  int columns = 1800;
+  // kAuto: the ring field when the cloud has one, else the elevation angle.
+  RowSource row_source = RowSource::kAuto;
+  // Elevation of each row, ascending (row 0 = lowest beam), degrees. Filled from
+  // beam_angles_deg, or spread evenly over [vertical_min_deg, vertical_max_deg].
+  std::vector<double> beam_angles_deg;
+  // Height of each beam's origin above the sensor origin (m). The HDL-64E's two laser blocks sit
+  // about 0.2 m and 0.12 m above its origin; without this the elevation of a beam drifts with
+  // range by more than the row spacing. Zero when not given.
+  std::vector<double> beam_offsets_m;
+  // ring value -> row, when the driver does not number rings bottom-up. Identity when empty.
+  std::vector<int> ring_to_row;
+  double min_range = 1.0;    // m
+  double max_range = 100.0;  // m
+  double mount_angle_deg = 0.0;
+  int ground_rows = 7;       // rows counted from the bottom that may hold ground
+  double scan_period = 0.1;  // s
+  bool deskewed = false;     // true when the driver already removed motion distortion (KITTI)
+};
+
+// Minimum size for a cluster to be kept, as LeGO-LOAM: at least min_points, or at least
+// min_points_multi_row spanning at least min_rows rows.
+struct ClusterSizeRule {
+  int min_points = 30;
+  int min_points_multi_row = 5;
+  int min_rows = 3;
+};
+
+struct SegmentationParams {
+  double beta0_deg = 60.0;  // LeGO-LOAM's segmentTheta
+  ClusterSizeRule size_rule;
+  double ground_slope_tolerance_deg = 10.0;
+  int ground_downsample = 5;   // keep every n-th ground column in the segmented cloud
+  int outlier_downsample = 5;  // keep every n-th outlier column in the outlier cloud
+};
+
+enum class Beta0Mode { kAdaptive, kFixed };
+
+struct AmbientFilterParams {
+  Beta0Mode mode = Beta0Mode::kAdaptive;
+  double beta0_min_deg = 10.0;    // lenient end: used when mu = 1 (degenerate scene)
+  double beta0_max_deg = 60.0;    // strict end: used when mu = 0, and for the skeleton
+  double fixed_beta0_deg = 60.0;  // used when mode is kFixed
+  // Step 4: adaptive Euclidean clustering on the range image.
+  int euclidean_window = 3;  // w: the window is (2w+1) x (2w+1)
+  double euclidean_gamma = 1.2;
+  double euclidean_fixed_threshold = 0.0;  // m; > 0 turns the adaptive threshold off (baseline)
+  // Step 5: skeleton.
+  int skeleton_euclidean_min_points = 100;  // n_e
+  int skeleton_depth_min_points = 30;       // n_d
+  // Step 6: normals.
+  double normal_sample_ratio = 0.1;  // p
+  int normal_window = 3;
+  double normal_depth_threshold = 1.0;  // depth_0, m
+  int normal_min_neighbors = 5;         // t_0
+  uint32_t seed = 1;
+  // Step 8: exponential smoothing of mu over scans; 0 = none.
+  double mu_smoothing = 0.0;
+};
+
+struct Config {
+  std::string source;  // file the config came from, for messages
+  SensorParams sensor;
+  SegmentationParams segmentation;
+  AmbientFilterParams ambient;
+};
+
+// Loads and checks a config file. Throws ConfigError naming the file, the key and the allowed
+// range on the first bad value; unknown keys are errors too (a typo must not pass silently).
+Config load_config(const std::string& path);
+// The same from YAML text; `source` names it in messages.
+Config parse_config(const std::string& yaml_text, const std::string& source);
+
+// Cross-field checks shared by the loader and code that builds params by hand.
+void validate(const SensorParams& sensor, const std::string& source);
+
+}  // namespace adaptive_lego_loam

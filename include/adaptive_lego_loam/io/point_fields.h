@@ -1,0 +1,48 @@
+#pragma once
+// Decoding of packed point records (PCD files, sensor_msgs/PointCloud2) into a Scan, in one
+// place so that every reader accepts the same field names and types.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "adaptive_lego_loam/core/scan.h"
+
+namespace adaptive_lego_loam {
+
+// Same numbering as sensor_msgs/PointField and pcl::PCLPointField.
+enum class FieldType : uint8_t {
+  kInt8 = 1,
+  kUint8 = 2,
+  kInt16 = 3,
+  kUint16 = 4,
+  kInt32 = 5,
+  kUint32 = 6,
+  kFloat32 = 7,
+  kFloat64 = 8
+};
+
+struct FieldDescription {
+  std::string name;
+  uint32_t offset = 0;
+  uint8_t datatype = 0;
+  uint32_t count = 1;
+};
+
+struct PackedPoints {
+  std::vector<FieldDescription> fields;
+  const uint8_t* data = nullptr;
+  std::size_t data_size = 0;  // bytes available at `data`
+  std::size_t points = 0;     // width * height
+  uint32_t point_step = 0;
+  bool big_endian = false;
+};
+
+// Accepted names: x, y, z (required); intensity | reflectance | i; ring | channel (any integer
+// type); time (float seconds from the sweep start) | t | time_stamp | timestamp (integer
+// nanoseconds, or float seconds). Throws IoError naming `source` when a required field is
+// missing, has a non-numeric type or lies outside the record, or when the data is short.
+Scan decode_points(const PackedPoints& packed, const std::string& source);
+
+}  // namespace adaptive_lego_loam

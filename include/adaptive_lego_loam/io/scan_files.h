@@ -1,0 +1,25 @@
+#pragma once
+// Reading and writing single scans: KITTI .bin (float32 x, y, z, reflectance) and PCD.
+
+#include <string>
+#include <vector>
+
+#include "adaptive_lego_loam/core/scan.h"
+
+namespace adaptive_lego_loam {
+
+// Throws IoError naming the file when it cannot be opened or its size is not a multiple of 16.
+Scan read_kitti_bin(const std::string& path);
+void write_kitti_bin(const std::string& path, const Scan& scan);
+
+// Any PCD that PCL reads (ASCII, binary, binary_compressed), with the fields of decode_points().
+Scan read_pcd(const std::string& path);
+
+// By extension: .bin (KITTI) or .pcd.
+Scan read_scan_file(const std::string& path);
+
+// The .bin and .pcd files directly in `dir`, sorted by name. Throws IoError when `dir` is not a
+// readable directory.
+std::vector<std::string> list_scan_files(const std::string& dir);
+
+}  // namespace adaptive_lego_loam

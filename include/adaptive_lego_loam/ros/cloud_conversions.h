@@ -1,0 +1,22 @@
+#pragma once
+// Conversions between sensor_msgs/PointCloud2 and the core's Scan: the only place that knows both.
+
+#include <sensor_msgs/PointCloud2.h>
+
+#include <string>
+#include <vector>
+
+#include "adaptive_lego_loam/core/scan.h"
+
+namespace adaptive_lego_loam::ros_bridge {
+
+// Any PointCloud2 with x, y, z (float32/float64), with or without intensity, ring and time
+// fields (see decode_points for the accepted names). Throws IoError naming `source` (the topic)
+// when a required field is missing or the message is malformed.
+Scan from_ros(const sensor_msgs::PointCloud2& msg, const std::string& source);
+
+// x, y, z, intensity, and ring (uint16) and time (float32, s) when `with_ring_and_time`.
+sensor_msgs::PointCloud2 to_ros(const std::vector<ScanPoint>& points,
+                                const std_msgs::Header& header, bool with_ring_and_time = false);
+
+}  // namespace adaptive_lego_loam::ros_bridge

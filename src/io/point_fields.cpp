@@ -1,0 +1,146 @@
+#include "adaptive_lego_loam/io/point_fields.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include "adaptive_lego_loam/io/io_error.h"
+
+namespace adaptive_lego_loam {
+namespace {
+
+std::size_t type_size(uint8_t datatype) {
+  switch (static_cast<FieldType>(datatype)) {
+    case FieldType::kInt8:
+    case FieldType::kUint8:
+      return 1;
+    case FieldType::kInt16:
+    case FieldType::kUint16:
+      return 2;
+    case FieldType::kInt32:
+    case FieldType::kUint32:
+    case FieldType::kFloat32:
+      return 4;
+    case FieldType::kFloat64:
+      return 8;
+  }
+  return 0;
+}
+
+bool is_integer(uint8_t datatype) {
+  return datatype >= static_cast<uint8_t>(FieldType::kInt8) &&
+         datatype <= static_cast<uint8_t>(FieldType::kUint32);
+}
+
+template <typename T>
+T load(const uint8_t* at, bool swap) {
+  uint8_t bytes[sizeof(T)];
+  std::memcpy(bytes, at, sizeof(T));
+  if (swap) std::reverse(bytes, bytes + sizeof(T));
+  T value;
+  std::memcpy(&value, bytes, sizeof(T));
+  return value;
+}
+
+double read_value(const uint8_t* at, uint8_t datatype, bool swap) {
+  switch (static_cast<FieldType>(datatype)) {
+    case FieldType::kInt8:
+      return load<int8_t>(at, false);
+    case FieldType::kUint8:
+      return load<uint8_t>(at, false);
+    case FieldType::kInt16:
+      return load<int16_t>(at, swap);
+    case FieldType::kUint16:
+      return load<uint16_t>(at, swap);
+    case FieldType::kInt32:
+      return load<int32_t>(at, swap);
+    case FieldType::kUint32:
+      return load<uint32_t>(at, swap);
+    case FieldType::kFloat32:
+      return load<float>(at, swap);
+    case FieldType::kFloat64:
+      return load<double>(at, swap);
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// Finds the first field whose name is one of `names`; checks its type and extent.
+const FieldDescription* find_field(const PackedPoints& packed,
+                                   std::initializer_list<const char*> names,
+                                   const std::string& source) {
+  for (const char* name : names) {
+    for (const FieldDescription& field : packed.fields) {
+      if (field.name != name) continue;
+      const std::size_t size = type_size(field.datatype);
+      if (size == 0) {
+        throw IoError(source + ": field '" + field.name + "' has unknown datatype " +
+                      std::to_string(field.datatype) + "; expected 1..8 (PointField types)");
+      }
+      if (field.offset + size > packed.point_step) {
+        throw IoError(source + ": field '" + field.name + "' at offset " +
+                      std::to_string(field.offset) + " runs past the point step of " +
+                      std::to_string(packed.point_step) + " bytes");
+      }
+      return &field;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+Scan decode_points(const PackedPoints& packed, const std::string& source) {
+  const FieldDescription* x = find_field(packed, {"x"}, source);
+  const FieldDescription* y = find_field(packed, {"y"}, source);
+  const FieldDescription* z = find_field(packed, {"z"}, source);
+  if (!x || !y || !z) {
+    std::string names;
+    for (const auto& field : packed.fields)
+      names += (names.empty() ? "" : " ") + field.name;
+    throw IoError(source + ": missing field " +
+                  std::string(!x   ? "x"
+                              : !y ? "y"
+                                   : "z") +
+                  "; fields present: " + (names.empty() ? "none" : names));
+  }
+  if (packed.points > 0 && packed.data_size < packed.points * packed.point_step) {
+    throw IoError(source + ": data holds " + std::to_string(packed.data_size) +
+                  " bytes, expected " + std::to_string(packed.points) + " points x " +
+                  std::to_string(packed.point_step) + " bytes");
+  }
+  const FieldDescription* intensity = find_field(packed, {"intensity", "reflectance", "i"}, source);
+  const FieldDescription* ring = find_field(packed, {"ring", "channel"}, source);
+  const FieldDescription* time =
+      find_field(packed, {"time", "t", "time_stamp", "timestamp"}, source);
+  if (ring && !is_integer(ring->datatype)) {
+    throw IoError(source + ": field '" + ring->name + "' must have an integer type");
+  }
+  // Integer time fields are nanoseconds (Ouster's t, nebula's time_stamp), float ones seconds.
+  const double time_scale = time && is_integer(time->datatype) ? 1e-9 : 1.0;
+
+  Scan scan;
+  scan.has_ring = ring != nullptr;
+  scan.has_time = time != nullptr;
+  scan.points.resize(packed.points);
+  const bool swap = packed.big_endian;
+  for (std::size_t i = 0; i < packed.points; ++i) {
+    const uint8_t* record = packed.data + i * packed.point_step;
+    ScanPoint& p = scan.points[i];
+    p.x = static_cast<float>(read_value(record + x->offset, x->datatype, swap));
+    p.y = static_cast<float>(read_value(record + y->offset, y->datatype, swap));
+    p.z = static_cast<float>(read_value(record + z->offset, z->datatype, swap));
+    if (intensity) {
+      p.intensity =
+          static_cast<float>(read_value(record + intensity->offset, intensity->datatype, swap));
+    }
+    if (ring)
+      p.ring = static_cast<int32_t>(read_value(record + ring->offset, ring->datatype, swap));
+    if (time) {
+      p.time =
+          static_cast<float>(read_value(record + time->offset, time->datatype, swap) * time_scale);
+    }
+  }
+  return scan;
+}
+
+}  // namespace adaptive_lego_loam

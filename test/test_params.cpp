@@ -1,0 +1,93 @@
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "adaptive_lego_loam/core/params.h"
+
+using namespace adaptive_lego_loam;
+
+namespace {
+
+std::string error_of(const std::string& yaml) {
+  try {
+    parse_config(yaml, "test.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kMinimal = "sensor:\n  rows: 16\n  columns: 1800\n";
+
+}  // namespace
+
+TEST(Params, ShippedConfigsLoad) {
+  for (const char* name : {"vlp16", "hdl32", "hdl64e", "kitti"}) {
+    const std::string path = std::string(CONFIG_DIR) + "/" + name + ".yaml";
+    SCOPED_TRACE(path);
+    const Config config = load_config(path);
+    EXPECT_EQ(static_cast<int>(config.sensor.beam_angles_deg.size()), config.sensor.rows);
+    EXPECT_EQ(config.source, path);
+  }
+  const Config kitti = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  EXPECT_EQ(kitti.sensor.rows, 64);
+  EXPECT_EQ(kitti.sensor.row_source, RowSource::kElevation);
+  EXPECT_EQ(kitti.sensor.beam_offsets_m.size(), 64u);
+  EXPECT_TRUE(kitti.sensor.deskewed);
+}
+
+TEST(Params, EvenBeamsFromVerticalLimits) {
+  const Config config = load_config(std::string(CONFIG_DIR) + "/vlp16.yaml");
+  ASSERT_EQ(config.sensor.beam_angles_deg.size(), 16u);
+  EXPECT_DOUBLE_EQ(config.sensor.beam_angles_deg.front(), -15.0);
+  EXPECT_DOUBLE_EQ(config.sensor.beam_angles_deg.back(), 15.0);
+  EXPECT_DOUBLE_EQ(config.sensor.beam_angles_deg[1], -13.0);
+}
+
+TEST(Params, OutOfRangeValueNamesKeyAndRange) {
+  const std::string error = error_of("sensor:\n  rows: -3\n");
+  EXPECT_NE(error.find("test.yaml"), std::string::npos) << error;
+  EXPECT_NE(error.find("sensor.rows"), std::string::npos) << error;
+  EXPECT_NE(error.find("[1, 512]"), std::string::npos) << error;
+}
+
+TEST(Params, WrongTypeNamesKey) {
+  const std::string error = error_of(std::string(kMinimal) + "segmentation:\n  beta0_deg: steep\n");
+  EXPECT_NE(error.find("segmentation.beta0_deg"), std::string::npos) << error;
+  EXPECT_NE(error.find("a number"), std::string::npos) << error;
+}
+
+TEST(Params, UnknownKeyAndSectionAreErrors) {
+  EXPECT_NE(error_of(std::string(kMinimal) + "  colums: 3\n").find("sensor.colums"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "mapping_typo:\n  a: 1\n").find("mapping_typo"),
+            std::string::npos);
+}
+
+TEST(Params, BeamTableMustMatchRowsAndAscend) {
+  EXPECT_NE(error_of("sensor:\n  rows: 3\n  beam_angles_deg: [-2, 0]\n").find("one per row"),
+            std::string::npos);
+  EXPECT_NE(error_of("sensor:\n  rows: 3\n  beam_angles_deg: [-2, 1, 0]\n").find("ascending"),
+            std::string::npos);
+}
+
+TEST(Params, ChoiceListsAllowedValues) {
+  const std::string error = error_of(std::string(kMinimal) + "  row_source: laser\n");
+  EXPECT_NE(error.find("auto, ring, elevation"), std::string::npos) << error;
+}
+
+TEST(Params, Beta0BoundsMustBeOrdered) {
+  const std::string error = error_of(std::string(kMinimal) +
+                                     "ambient_filter:\n  beta0_min_deg: 50\n  beta0_max_deg: 20\n");
+  EXPECT_NE(error.find("ambient_filter.beta0_min_deg"), std::string::npos) << error;
+}
+
+TEST(Params, MissingFileAndBrokenYaml) {
+  try {
+    load_config("/nonexistent/x.yaml");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/x.yaml"), std::string::npos);
+  }
+  EXPECT_NE(error_of("sensor: [1, 2\n").find("not valid YAML"), std::string::npos);
+}
