@@ -8,49 +8,40 @@
 #include "adaptive_lego_loam/core/params.h"
 #include "adaptive_lego_loam/core/range_image.h"
 #include "adaptive_lego_loam/core/segmentation.h"
-#include "adaptive_lego_loam/io/scan_files.h"
+#include "bench_data.h"
 
 using namespace adaptive_lego_loam;
 
 namespace {
 
-struct Frame {
-  Config config = load_config(std::string(PROJECT_SOURCE_DIR) + "/config/kitti.yaml");
-  Scan scan = read_kitti_bin(std::string(PROJECT_SOURCE_DIR) +
-                             "/test/data/kitti_seq07/velodyne/0000000000.bin");
-};
-
-const Frame& frame() {
-  static const Frame instance;
-  return instance;
-}
+using bench::kitti_frame;
 
 void BM_Projection(benchmark::State& state) {
-  RangeProjector projector(frame().config.sensor);
+  RangeProjector projector(kitti_frame().config.sensor);
   RangeImage image;
   for (auto _ : state) {
-    projector.project(frame().scan, image);
+    projector.project(kitti_frame().scan, image);
     benchmark::DoNotOptimize(image.stats().projected);
   }
 }
 
 void BM_Ground(benchmark::State& state) {
-  const SensorParams& sensor = frame().config.sensor;
+  const SensorParams& sensor = kitti_frame().config.sensor;
   RangeImage image;
-  RangeProjector(sensor).project(frame().scan, image);
+  RangeProjector(sensor).project(kitti_frame().scan, image);
   std::vector<uint8_t> ground;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(mark_ground(image, sensor.ground_rows, sensor.mount_angle_deg,
-                                         frame().config.segmentation.ground_slope_tolerance_deg,
-                                         ground));
+    benchmark::DoNotOptimize(
+        mark_ground(image, sensor.ground_rows, sensor.mount_angle_deg,
+                    kitti_frame().config.segmentation.ground_slope_tolerance_deg, ground));
   }
 }
 
 void BM_DepthClustering(benchmark::State& state) {
-  const Config& config = frame().config;
+  const Config& config = kitti_frame().config;
   RangeProjector projector(config.sensor);
   RangeImage image;
-  projector.project(frame().scan, image);
+  projector.project(kitti_frame().scan, image);
   std::vector<uint8_t> ground;
   mark_ground(image, config.sensor.ground_rows, config.sensor.mount_angle_deg,
               config.segmentation.ground_slope_tolerance_deg, ground);
@@ -65,10 +56,10 @@ void BM_DepthClustering(benchmark::State& state) {
 
 // Projection + ground + depth clustering + segmented cloud, as imageProjection runs them.
 void BM_SegmentationTotal(benchmark::State& state) {
-  Segmenter segmenter(frame().config.sensor, frame().config.segmentation);
+  Segmenter segmenter(kitti_frame().config.sensor, kitti_frame().config.segmentation);
   SegmentationResult result;
   for (auto _ : state) {
-    segmenter.process(frame().scan, result);
+    segmenter.process(kitti_frame().scan, result);
     benchmark::DoNotOptimize(result.cloud.points.size());
   }
 }
