@@ -1,0 +1,89 @@
+#pragma once
+// Odometry metrics of METHOD.md (section Metrics): RPE per frame, the KITTI segment metric and
+// ATE after a rigid alignment. P is the estimate, Q the ground truth; both are poses of the same
+// sensor frame in that trajectory's first frame (x_world = pose * x_sensor). Index i of one
+// trajectory is the same scan as index i of the other.
+//
+// The metric functions throw std::invalid_argument when the trajectories are empty or differ in
+// length; evaluate_odometry() takes their common prefix instead.
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace adaptive_lego_loam {
+
+// E_i = (Q_i^-1 Q_{i+1})^-1 (P_i^-1 P_{i+1}) for each consecutive pair.
+struct RelativePoseError {
+  std::vector<double> translation_m;         // |t(E_i)|, one entry per pair (i, i+1)
+  std::vector<double> rotation_deg;          // angle of R(E_i)
+  std::optional<double> translation_rmse_m;  // empty with fewer than two poses
+  std::optional<double> rotation_rmse_deg;
+};
+
+RelativePoseError relative_pose_error(const std::vector<Eigen::Isometry3d>& estimate,
+                                      const std::vector<Eigen::Isometry3d>& ground_truth);
+
+struct KittiSegmentOptions {
+  std::vector<double> lengths_m{100, 200, 300, 400, 500, 600, 700, 800};
+  int start_every_frames = 10;
+};
+
+struct SegmentLengthError {
+  double length_m = 0;
+  int segments = 0;
+  double translation_percent = 0;
+  double rotation_deg_per_100m = 0;
+};
+
+// A segment starts at every start_every_frames-th frame and ends at the first frame whose
+// ground-truth path length from the start is at least the segment length. Its error is
+// E = (Q_s^-1 Q_e)^-1 (P_s^-1 P_e); translation |t(E)| in % and rotation angle(E) in deg per
+// 100 m, both divided by the segment's ground-truth path length. Averages are over segments.
+// Units: KITTI's devkit reports the rotation in deg/m; ours is 100 times that.
+struct KittiSegmentError {
+  double ground_truth_path_m = 0;  // the whole ground-truth path
+  int segments = 0;
+  // Empty when no segment fits: the path is shorter than the shortest segment length.
+  std::optional<double> translation_percent;
+  std::optional<double> rotation_deg_per_100m;
+  std::vector<SegmentLengthError> per_length;  // only lengths with at least one segment
+};
+
+KittiSegmentError kitti_segment_error(const std::vector<Eigen::Isometry3d>& estimate,
+                                      const std::vector<Eigen::Isometry3d>& ground_truth,
+                                      const KittiSegmentOptions& options = {});
+
+struct AbsoluteTrajectoryError {
+  // The rigid motion (Umeyama, no scale) that best maps the estimated positions onto the ground
+  // truth's: alignment * t(P_i) ~ t(Q_i).
+  Eigen::Isometry3d alignment = Eigen::Isometry3d::Identity();
+  double rmse_m = 0;  // of |alignment * t(P_i) - t(Q_i)|
+};
+
+AbsoluteTrajectoryError absolute_trajectory_error(
+    const std::vector<Eigen::Isometry3d>& estimate,
+    const std::vector<Eigen::Isometry3d>& ground_truth);
+
+// KITTI's ground truth is the left camera's pose; with Tr the velodyne-to-camera transform
+// (calib.txt), the lidar's pose is Tr^-1 * P_cam * Tr.
+std::vector<Eigen::Isometry3d> camera_to_lidar_poses(
+    const std::vector<Eigen::Isometry3d>& camera_poses, const Eigen::Isometry3d& velo_to_cam);
+
+struct OdometryEvaluation {
+  std::size_t estimate_frames = 0;
+  std::size_t ground_truth_frames = 0;
+  std::size_t frames_used = 0;  // the common prefix, e.g. of an interrupted run
+  RelativePoseError rpe;
+  KittiSegmentError kitti;
+  AbsoluteTrajectoryError ate;
+};
+
+// All three metrics over the common prefix of the two trajectories. Throws std::invalid_argument
+// when either is empty.
+OdometryEvaluation evaluate_odometry(const std::vector<Eigen::Isometry3d>& estimate,
+                                     const std::vector<Eigen::Isometry3d>& ground_truth,
+                                     const KittiSegmentOptions& options = {});
+
+}  // namespace adaptive_lego_loam

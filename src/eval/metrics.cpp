@@ -1,0 +1,168 @@
+#include "adaptive_lego_loam/eval/metrics.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace adaptive_lego_loam {
+namespace {
+
+using Poses = std::vector<Eigen::Isometry3d>;
+
+constexpr double kDegPerRad = 180.0 / EIGEN_PI;
+
+void check_same_length(const Poses& estimate, const Poses& ground_truth) {
+  if (estimate.empty() || ground_truth.empty()) {
+    throw std::invalid_argument("empty trajectory (estimate " + std::to_string(estimate.size()) +
+                                " poses, ground truth " + std::to_string(ground_truth.size()) +
+                                ")");
+  }
+  if (estimate.size() != ground_truth.size()) {
+    throw std::invalid_argument("trajectories differ in length (estimate " +
+                                std::to_string(estimate.size()) + " poses, ground truth " +
+                                std::to_string(ground_truth.size()) + ")");
+  }
+}
+
+// (Q_a^-1 Q_b)^-1 (P_a^-1 P_b): the estimated motion from a to b seen from the true one.
+Eigen::Isometry3d motion_error(const Poses& estimate, const Poses& ground_truth, std::size_t a,
+                               std::size_t b) {
+  const Eigen::Isometry3d true_motion = ground_truth[a].inverse() * ground_truth[b];
+  const Eigen::Isometry3d estimated_motion = estimate[a].inverse() * estimate[b];
+  return true_motion.inverse() * estimated_motion;
+}
+
+// Through the quaternion (atan2): accurate for small angles, unlike acos((trace - 1) / 2).
+double rotation_angle_rad(const Eigen::Isometry3d& pose) {
+  return Eigen::AngleAxisd(pose.linear()).angle();
+}
+
+double root_mean_square(const std::vector<double>& values) {
+  double sum = 0;
+  for (double value : values)
+    sum += value * value;
+  return std::sqrt(sum / static_cast<double>(values.size()));
+}
+
+// distances[i]: ground-truth path length from frame 0 to frame i.
+std::vector<double> path_distances(const Poses& poses) {
+  std::vector<double> distances(poses.size(), 0.0);
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    distances[i] = distances[i - 1] + (poses[i].translation() - poses[i - 1].translation()).norm();
+  }
+  return distances;
+}
+
+void check_options(const KittiSegmentOptions& options) {
+  if (options.start_every_frames < 1) {
+    throw std::invalid_argument("start_every_frames must be at least 1");
+  }
+  for (double length : options.lengths_m) {
+    if (!(length > 0)) throw std::invalid_argument("segment lengths must be positive");
+  }
+}
+
+}  // namespace
+
+RelativePoseError relative_pose_error(const Poses& estimate, const Poses& ground_truth) {
+  check_same_length(estimate, ground_truth);
+  RelativePoseError result;
+  for (std::size_t i = 0; i + 1 < estimate.size(); ++i) {
+    const Eigen::Isometry3d error = motion_error(estimate, ground_truth, i, i + 1);
+    result.translation_m.push_back(error.translation().norm());
+    result.rotation_deg.push_back(rotation_angle_rad(error) * kDegPerRad);
+  }
+  if (!result.translation_m.empty()) {
+    result.translation_rmse_m = root_mean_square(result.translation_m);
+    result.rotation_rmse_deg = root_mean_square(result.rotation_deg);
+  }
+  return result;
+}
+
+KittiSegmentError kitti_segment_error(const Poses& estimate, const Poses& ground_truth,
+                                      const KittiSegmentOptions& options) {
+  check_same_length(estimate, ground_truth);
+  check_options(options);
+  const std::vector<double> distances = path_distances(ground_truth);
+  KittiSegmentError result;
+  result.ground_truth_path_m = distances.back();
+  double translation_sum = 0, rotation_sum = 0;
+  for (double length : options.lengths_m) {
+    SegmentLengthError per_length{length};
+    for (std::size_t start = 0; start < distances.size(); start += options.start_every_frames) {
+      const auto end_it =
+          std::lower_bound(distances.begin() + start, distances.end(), distances[start] + length);
+      if (end_it == distances.end()) break;  // later starts are nearer the end: none fits either
+      const std::size_t end = static_cast<std::size_t>(end_it - distances.begin());
+      const double path = distances[end] - distances[start];
+      const Eigen::Isometry3d error = motion_error(estimate, ground_truth, start, end);
+      const double translation_percent = 100.0 * error.translation().norm() / path;
+      const double rotation_deg_per_100m = 100.0 * rotation_angle_rad(error) * kDegPerRad / path;
+      ++per_length.segments;
+      per_length.translation_percent += translation_percent;
+      per_length.rotation_deg_per_100m += rotation_deg_per_100m;
+      translation_sum += translation_percent;
+      rotation_sum += rotation_deg_per_100m;
+    }
+    if (per_length.segments == 0) continue;
+    result.segments += per_length.segments;
+    per_length.translation_percent /= per_length.segments;
+    per_length.rotation_deg_per_100m /= per_length.segments;
+    result.per_length.push_back(per_length);
+  }
+  if (result.segments > 0) {
+    result.translation_percent = translation_sum / result.segments;
+    result.rotation_deg_per_100m = rotation_sum / result.segments;
+  }
+  return result;
+}
+
+AbsoluteTrajectoryError absolute_trajectory_error(const Poses& estimate,
+                                                  const Poses& ground_truth) {
+  check_same_length(estimate, ground_truth);
+  const Eigen::Index n = static_cast<Eigen::Index>(estimate.size());
+  Eigen::Matrix3Xd estimated_positions(3, n), true_positions(3, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    estimated_positions.col(i) = estimate[i].translation();
+    true_positions.col(i) = ground_truth[i].translation();
+  }
+  AbsoluteTrajectoryError result;
+  result.alignment.matrix() = Eigen::umeyama(estimated_positions, true_positions, false);
+  const Eigen::Matrix3Xd residuals = ((result.alignment.linear() * estimated_positions).colwise() +
+                                      result.alignment.translation()) -
+                                     true_positions;
+  result.rmse_m = std::sqrt(residuals.colwise().squaredNorm().mean());
+  return result;
+}
+
+std::vector<Eigen::Isometry3d> camera_to_lidar_poses(const Poses& camera_poses,
+                                                     const Eigen::Isometry3d& velo_to_cam) {
+  // The general inverse, not the isometry one (transpose): KITTI's Tr is orthonormal only to
+  // ~1e-7, and this way an identity camera pose still maps to the identity.
+  const Eigen::Isometry3d cam_to_velo(velo_to_cam.inverse(Eigen::Affine).matrix());
+  Poses lidar_poses;
+  lidar_poses.reserve(camera_poses.size());
+  for (const Eigen::Isometry3d& camera_pose : camera_poses)
+    lidar_poses.push_back(cam_to_velo * camera_pose * velo_to_cam);
+  return lidar_poses;
+}
+
+OdometryEvaluation evaluate_odometry(const Poses& estimate, const Poses& ground_truth,
+                                     const KittiSegmentOptions& options) {
+  OdometryEvaluation evaluation;
+  evaluation.estimate_frames = estimate.size();
+  evaluation.ground_truth_frames = ground_truth.size();
+  evaluation.frames_used = std::min(estimate.size(), ground_truth.size());
+  if (evaluation.frames_used == 0) check_same_length(estimate, ground_truth);  // throws
+  const auto used = static_cast<std::ptrdiff_t>(evaluation.frames_used);
+  const Poses estimate_used(estimate.begin(), estimate.begin() + used);
+  const Poses truth_used(ground_truth.begin(), ground_truth.begin() + used);
+  evaluation.rpe = relative_pose_error(estimate_used, truth_used);
+  evaluation.kitti = kitti_segment_error(estimate_used, truth_used, options);
+  evaluation.ate = absolute_trajectory_error(estimate_used, truth_used);
+  return evaluation;
+}
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,138 @@
+// Compares an estimated trajectory with ground truth (both KITTI pose files) and prints the KITTI
+// segment errors, the RPE and the ATE of METHOD.md; --json writes the same numbers.
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "adaptive_lego_loam/eval/metrics.h"
+#include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/pose_files.h"
+
+using namespace adaptive_lego_loam;
+using nlohmann::json;
+
+namespace {
+
+json optional_number(const std::optional<double>& value) {
+  return value ? json(*value) : json(nullptr);
+}
+
+json to_json(const OdometryEvaluation& evaluation) {
+  json per_length = json::array();
+  for (const SegmentLengthError& length : evaluation.kitti.per_length) {
+    per_length.push_back({{"length_m", length.length_m},
+                          {"segments", length.segments},
+                          {"t_err_percent", length.translation_percent},
+                          {"r_err_deg_per_100m", length.rotation_deg_per_100m}});
+  }
+  json alignment = json::array();
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 4; ++col)
+      alignment.push_back(evaluation.ate.alignment.matrix()(row, col));
+  }
+  return {{"frames",
+           {{"estimate", evaluation.estimate_frames},
+            {"ground_truth", evaluation.ground_truth_frames},
+            {"used", evaluation.frames_used}}},
+          {"kitti",
+           {{"t_err_percent", optional_number(evaluation.kitti.translation_percent)},
+            {"r_err_deg_per_100m", optional_number(evaluation.kitti.rotation_deg_per_100m)},
+            {"segments", evaluation.kitti.segments},
+            {"ground_truth_path_m", evaluation.kitti.ground_truth_path_m},
+            {"per_length", per_length}}},
+          {"rpe",
+           {{"translation_rmse_m", optional_number(evaluation.rpe.translation_rmse_m)},
+            {"rotation_rmse_deg", optional_number(evaluation.rpe.rotation_rmse_deg)},
+            {"pairs", evaluation.rpe.translation_m.size()}}},
+          {"ate", {{"rmse_m", evaluation.ate.rmse_m}, {"alignment_3x4_row_major", alignment}}}};
+}
+
+void print_kitti(const KittiSegmentError& kitti) {
+  std::printf("ground-truth path  %.3f m\n", kitti.ground_truth_path_m);
+  if (kitti.segments == 0) {
+    const std::vector<double> lengths = KittiSegmentOptions{}.lengths_m;
+    std::printf("KITTI t_err        n/a (no segment: the path is shorter than %.0f m)\n",
+                *std::min_element(lengths.begin(), lengths.end()));
+    std::printf("KITTI r_err        n/a\n");
+    return;
+  }
+  std::printf("KITTI t_err        %.4f %% (%d segments)\n", *kitti.translation_percent,
+              kitti.segments);
+  std::printf("KITTI r_err        %.4f deg/100 m\n", *kitti.rotation_deg_per_100m);
+  std::printf("  %8s %8s %10s %16s\n", "length_m", "segments", "t_err_%", "r_err_deg/100m");
+  for (const SegmentLengthError& length : kitti.per_length) {
+    std::printf("  %8.0f %8d %10.4f %16.4f\n", length.length_m, length.segments,
+                length.translation_percent, length.rotation_deg_per_100m);
+  }
+}
+
+void print(const OdometryEvaluation& evaluation) {
+  std::printf("frames used        %zu (estimate %zu, ground truth %zu)\n", evaluation.frames_used,
+              evaluation.estimate_frames, evaluation.ground_truth_frames);
+  print_kitti(evaluation.kitti);
+  if (evaluation.rpe.translation_rmse_m) {
+    std::printf("RPE RMSE           %.6f m per frame (rotation %.6f deg)\n",
+                *evaluation.rpe.translation_rmse_m, *evaluation.rpe.rotation_rmse_deg);
+  } else {
+    std::printf("RPE RMSE           n/a (one frame)\n");
+  }
+  std::printf("ATE RMSE           %.6f m\n", evaluation.ate.rmse_m);
+}
+
+void write_json(const std::string& path, const json& document) {
+  std::ofstream file(path, std::ios::trunc);
+  if (!file) throw IoError(path + ": cannot open for writing");
+  file << document.dump(2) << '\n';
+  file.close();
+  if (!file) throw IoError(path + ": write failed");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Compare an estimated trajectory with ground truth (KITTI pose files, index i = scan i): "
+      "KITTI segment errors t_err (%) and r_err (deg/100 m), RPE RMSE (m per frame) and ATE "
+      "RMSE (m, after a rigid alignment). A shorter estimate (interrupted run) is compared over "
+      "its frames."};
+  std::string gt_path, estimate_path, calib_path, json_path;
+  app.add_option("--gt", gt_path, "ground-truth poses (KITTI format)")->required();
+  app.add_option("--est", estimate_path, "estimated poses (KITTI format, lidar frame)")->required();
+  app.add_option("--calib", calib_path,
+                 "KITTI calib.txt: its Tr converts camera ground truth to the lidar frame");
+  app.add_option("--json", json_path, "also write the numbers to this JSON file");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "evaluate_odometry: %s\n", e.what());
+    return e.get_exit_code();
+  }
+
+  try {
+    std::vector<Eigen::Isometry3d> ground_truth = read_kitti_poses(gt_path);
+    const std::vector<Eigen::Isometry3d> estimate = read_kitti_poses(estimate_path);
+    if (!calib_path.empty()) {
+      ground_truth = camera_to_lidar_poses(ground_truth, read_kitti_calib_tr(calib_path));
+    }
+    const OdometryEvaluation evaluation = evaluate_odometry(estimate, ground_truth);
+    if (estimate.size() != ground_truth.size()) {
+      std::fprintf(stderr,
+                   "evaluate_odometry: warning: estimate has %zu poses, ground truth %zu; "
+                   "comparing the first %zu\n",
+                   estimate.size(), ground_truth.size(), evaluation.frames_used);
+    }
+    if (!json_path.empty()) write_json(json_path, to_json(evaluation));
+    print(evaluation);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "evaluate_odometry: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
