@@ -194,6 +194,49 @@ void read_ambient(SectionReader& in, AmbientFilterParams& a) {
   in.reject_unknown_keys();
 }
 
+void read_features(SectionReader& in, FeatureParams& f) {
+  in.number("sectors", f.sectors, 1, 64);
+  in.number("sharp_per_sector", f.sharp_per_sector, 0, 1000);
+  in.number("less_sharp_per_sector", f.less_sharp_per_sector, 0, 10000);
+  in.number("flat_per_sector", f.flat_per_sector, 0, 1000);
+  in.number("edge_threshold", f.edge_threshold, 0.0, 100.0);
+  in.number("surface_threshold", f.surface_threshold, 0.0, 100.0);
+  in.number("occlusion_threshold", f.occlusion_threshold, 0.0, 100.0);
+  in.number("parallel_threshold", f.parallel_threshold, 0.0, 1.0);
+  in.number("less_flat_voxel", f.less_flat_voxel, 0.0, 10.0);
+  if (f.less_sharp_per_sector < f.sharp_per_sector) {
+    in.fail("features.less_sharp_per_sector", "must be at least features.sharp_per_sector");
+  }
+  in.reject_unknown_keys();
+}
+
+void read_odometry(SectionReader& in, OdometryParams& o) {
+  in.choice("mode", o.mode,
+            {{"two_step", OdometryMode::kTwoStep}, {"joint", OdometryMode::kJoint}});
+  in.number("max_iterations", o.max_iterations, 1, 100);
+  in.number("solver_iterations", o.solver_iterations, 1, 100);
+  in.number("max_match_distance", o.max_match_distance, 0.1, 100.0);
+  in.number("huber_loss", o.huber_loss, 0.001, 100.0);
+  in.boolean("constant_velocity", o.constant_velocity);
+  in.reject_unknown_keys();
+}
+
+void read_mapping(SectionReader& in, MappingParams& m) {
+  in.boolean("enabled", m.enabled);
+  in.number("max_iterations", m.max_iterations, 1, 100);
+  in.number("solver_iterations", m.solver_iterations, 1, 100);
+  in.number("huber_loss", m.huber_loss, 0.001, 100.0);
+  in.number("corner_voxel", m.corner_voxel, 0.01, 10.0);
+  in.number("surface_voxel", m.surface_voxel, 0.01, 10.0);
+  in.number("keyframe_distance", m.keyframe_distance, 0.0, 100.0);
+  in.number("keyframe_angle_deg", m.keyframe_angle_deg, 0.0, 180.0);
+  in.number("local_map_radius", m.local_map_radius, 1.0, 1000.0);
+  in.number("local_map_keyframes", m.local_map_keyframes, 1, 10000);
+  in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
+  in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
+  in.reject_unknown_keys();
+}
+
 }  // namespace
 
 void validate(const SensorParams& s, const std::string& source) {
@@ -250,10 +293,17 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
   read_segmentation(segmentation, config.segmentation);
   SectionReader ambient = section("ambient_filter");
   read_ambient(ambient, config.ambient);
+  SectionReader features = section("features");
+  read_features(features, config.features);
+  SectionReader odometry = section("odometry");
+  read_odometry(odometry, config.odometry);
+  SectionReader mapping = section("mapping");
+  read_mapping(mapping, config.mapping);
 
   for (const auto& entry : root) {
     const std::string name = entry.first.as<std::string>();
-    static const std::set<std::string> known = {"sensor", "segmentation", "ambient_filter"};
+    static const std::set<std::string> known = {"sensor",   "segmentation", "ambient_filter",
+                                                "features", "odometry",     "mapping"};
     if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
   }
   validate(config.sensor, source);

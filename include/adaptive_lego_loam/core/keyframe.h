@@ -9,11 +9,11 @@
 namespace adaptive_lego_loam {
 
 struct Keyframe {
-  int index = 0;      // position in the keyframe list
-  int frame = 0;      // input frame it was taken at
-  double stamp = 0.0;  // s
+  int index = 0;                                           // position in the keyframe list
+  int frame = 0;                                           // input frame it was taken at
+  double stamp = 0.0;                                      // s
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // sensor pose in the map frame
-  CloudPtr corners;   // sharp + less sharp edges, sensor frame
+  CloudPtr corners;                                        // sharp + less sharp edges, sensor frame
   CloudPtr surfaces;  // flat + less flat surfaces (down-sampled), sensor frame
   CloudPtr outliers;  // LeGO-LOAM's outlier cloud, sensor frame (used as surfaces)
 };

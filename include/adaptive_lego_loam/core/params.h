@@ -81,11 +81,57 @@ struct AmbientFilterParams {
   double mu_smoothing = 0.0;
 };
 
+// LeGO-LOAM's feature extraction on the segmented cloud.
+struct FeatureParams {
+  int sectors = 6;  // each row is split into this many sectors
+  int sharp_per_sector = 2;
+  int less_sharp_per_sector = 20;
+  int flat_per_sector = 4;
+  double edge_threshold = 0.1;       // curvature above: edge candidate
+  double surface_threshold = 0.1;    // curvature below: surface candidate
+  double occlusion_threshold = 0.3;  // m: range step that marks an occluded side
+  double parallel_threshold = 0.02;  // relative range step on both sides: beam near parallel
+  double less_flat_voxel = 0.2;      // m: voxel filter of the less-flat surfaces per row
+};
+
+enum class OdometryMode { kTwoStep, kJoint };
+
+// Scan-to-scan odometry (LeGO-LOAM's featureAssociation).
+struct OdometryParams {
+  OdometryMode mode = OdometryMode::kJoint;
+  int max_iterations = 8;           // correspondence searches per scan
+  int solver_iterations = 5;        // Ceres iterations per search
+  double max_match_distance = 5.0;  // m
+  double huber_loss = 0.1;          // m
+  bool constant_velocity = true;    // initial guess from the previous motion
+};
+
+// Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).
+struct MappingParams {
+  bool enabled = true;
+  int max_iterations = 10;
+  int solver_iterations = 4;
+  double huber_loss = 0.1;             // m
+  double corner_voxel = 0.2;           // m, local map and current corners
+  double surface_voxel = 0.4;          // m, local map and current surfaces
+  double keyframe_distance = 1.0;      // m between keyframes ...
+  double keyframe_angle_deg = 10.0;    // ... or this much rotation
+  double local_map_radius = 50.0;      // m: keyframes within this distance form the local map
+  int local_map_keyframes = 40;        // at most this many, nearest in time first
+  double degeneracy_eigenvalue = 100;  // LOAM's threshold on the normal equations' eigenvalues
+  // Weight of a prior pulling the translation along the ambient filter's weak direction toward
+  // the odometry's prediction, times mu; 0 turns it off.
+  double weak_direction_prior = 0.0;
+};
+
 struct Config {
   std::string source;  // file the config came from, for messages
   SensorParams sensor;
   SegmentationParams segmentation;
   AmbientFilterParams ambient;
+  FeatureParams features;
+  OdometryParams odometry;
+  MappingParams mapping;
 };
 
 // Loads and checks a config file. Throws ConfigError naming the file, the key and the allowed

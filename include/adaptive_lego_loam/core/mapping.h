@@ -1,0 +1,74 @@
+#pragma once
+// Scan-to-map matching (LeGO-LOAM's mapOptimization) with Ceres: the scan's edges against lines
+// and its surfaces against planes fitted to the five nearest points of a local map built from
+// the surrounding keyframes. Degenerate directions of the normal equations (LOAM's eigenvalue
+// test) receive no update.
+
+#include <pcl/kdtree/kdtree_flann.h>
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+#include "adaptive_lego_loam/core/cloud.h"
+#include "adaptive_lego_loam/core/keyframe.h"
+#include "adaptive_lego_loam/core/params.h"
+
+namespace adaptive_lego_loam {
+
+// The local map: the chosen keyframes' features in the map frame, voxel-filtered.
+class LocalMap {
+ public:
+  explicit LocalMap(const MappingParams& params);
+  // Rebuilds from the keyframes near `position` when that set (or `version`, bumped when
+  // keyframe poses change) differs from the last build. Returns whether it rebuilt.
+  bool update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position, int version);
+  const CloudPtr& corners() const { return corners_; }
+  const CloudPtr& surfaces() const { return surfaces_; }
+  const pcl::KdTreeFLANN<CloudPoint>& corner_tree() const { return corner_tree_; }
+  const pcl::KdTreeFLANN<CloudPoint>& surface_tree() const { return surface_tree_; }
+  bool empty() const { return corners_->empty() && surfaces_->empty(); }
+
+ private:
+  std::vector<int> select(const std::vector<Keyframe>& keyframes,
+                          const Eigen::Vector3d& position) const;
+  MappingParams params_;
+  std::vector<int> selected_;
+  int version_ = -1;
+  CloudPtr corners_{new Cloud}, surfaces_{new Cloud};
+  pcl::KdTreeFLANN<CloudPoint> corner_tree_, surface_tree_;
+};
+
+struct MapMatchResult {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  int edge_matches = 0;
+  int plane_matches = 0;
+  int iterations = 0;
+  int degenerate_directions = 0;     // of the 6, held at the guess
+  double smallest_eigenvalue = 0.0;  // of the normal equations at the first iteration
+  bool matched = false;              // false with too few correspondences: pose = guess
+};
+
+// A soft constraint along the direction the scan constrains least (the ambient filter's weak
+// direction, sensor frame), pulling the translation toward the prediction.
+struct WeakDirectionPrior {
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  double weight = 0.0;
+};
+
+class ScanToMapMatcher {
+ public:
+  explicit ScanToMapMatcher(const MappingParams& params);
+  // `corners` and `surfaces` in the sensor frame; `guess` the sensor pose in the map.
+  MapMatchResult match(const Cloud& corners, const Cloud& surfaces, const LocalMap& map,
+                       const Eigen::Isometry3d& guess,
+                       const std::optional<WeakDirectionPrior>& prior = std::nullopt) const;
+
+ private:
+  MappingParams params_;
+};
+
+// Voxel-filtered copy of `cloud` (no filtering when leaf <= 0).
+CloudPtr voxel_filter(const Cloud& cloud, double leaf);
+
+}  // namespace adaptive_lego_loam

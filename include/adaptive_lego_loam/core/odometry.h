@@ -1,0 +1,45 @@
+#pragma once
+// Scan-to-scan odometry (LeGO-LOAM's featureAssociation) with Ceres: the current scan's sharp
+// edges against lines of the previous scan's edges, its flat (ground) surfaces against planes of
+// the previous scan's surfaces. Two solves, selectable: LeGO-LOAM's two steps (planes fix z, roll
+// and pitch; then edges fix x, y and yaw) or one joint 6-DoF solve.
+
+#include <pcl/kdtree/kdtree_flann.h>
+
+#include <Eigen/Geometry>
+
+#include "adaptive_lego_loam/core/features.h"
+#include "adaptive_lego_loam/core/params.h"
+
+namespace adaptive_lego_loam {
+
+struct OdometryResult {
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // current scan in previous' frame
+  int edge_matches = 0;
+  int plane_matches = 0;
+  int iterations = 0;
+  bool registered = false;  // false for the first scan or when too few matches were found
+};
+
+class ScanToScanOdometry {
+ public:
+  explicit ScanToScanOdometry(const OdometryParams& params);
+  // Registers `current` against the previous scan's features, starting from `guess` (the motion
+  // from the previous scan to this one); then keeps `current` as the previous scan.
+  OdometryResult register_scan(const FeatureSet& current, const Eigen::Isometry3d& guess);
+  void reset();
+
+ private:
+  struct Matches;
+  void find_edge_matches(const Cloud& sharp, const double* pose, Matches& matches);
+  void find_plane_matches(const Cloud& flat, const double* pose, Matches& matches);
+  // One Ceres solve over the given residual kinds with the listed pose entries held fixed.
+  void solve(const Matches& matches, bool use_edges, bool use_planes,
+             const std::vector<int>& fixed_entries, double* pose) const;
+
+  OdometryParams params_;
+  CloudPtr previous_corners_, previous_surfaces_;
+  pcl::KdTreeFLANN<CloudPoint> corner_tree_, surface_tree_;
+};
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,275 @@
+#include "adaptive_lego_loam/core/mapping.h"
+
+#include <pcl/filters/voxel_grid.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "adaptive_lego_loam/core/residuals.h"
+
+namespace adaptive_lego_loam {
+namespace {
+
+constexpr int kNeighbours = 5;
+constexpr float kMaxNeighbourSquaredDistance = 1.0f;  // m^2, as LOAM
+constexpr double kMaxPlaneDeviation = 0.2;            // m
+constexpr int kMinMatches = 20;
+
+struct LineMatch {
+  Eigen::Vector3d point, a, b;
+};
+struct PlaneMatch {
+  Eigen::Vector3d point, normal;
+  double offset;
+};
+
+// Pulls the translation along `direction` toward `target`.
+struct DirectionPrior {
+  Eigen::Vector3d direction, target;
+  double weight;
+  template <typename T>
+  bool operator()(const T* translation, T* residual) const {
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(translation);
+    residual[0] = T(weight) * direction.cast<T>().dot(t - target.cast<T>());
+    return true;
+  }
+};
+
+std::optional<LineMatch> line_near(const pcl::KdTreeFLANN<CloudPoint>& tree, const Cloud& map,
+                                   const Eigen::Vector3d& sensor_point,
+                                   const Eigen::Vector3d& map_point) {
+  std::vector<int> indices(kNeighbours);
+  std::vector<float> squared(kNeighbours);
+  CloudPoint query;
+  query.getVector3fMap() = map_point.cast<float>();
+  if (tree.nearestKSearch(query, kNeighbours, indices, squared) < kNeighbours ||
+      squared.back() > kMaxNeighbourSquaredDistance) {
+    return std::nullopt;
+  }
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int index : indices)
+    centroid += map[index].getVector3fMap().cast<double>();
+  centroid /= kNeighbours;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (int index : indices) {
+    const Eigen::Vector3d d = map[index].getVector3fMap().cast<double>() - centroid;
+    covariance += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance / kNeighbours);
+  // A line: one dominant spread.
+  if (solver.eigenvalues()(2) < 3.0 * solver.eigenvalues()(1)) return std::nullopt;
+  const Eigen::Vector3d direction = solver.eigenvectors().col(2);
+  return LineMatch{sensor_point, centroid + 0.1 * direction, centroid - 0.1 * direction};
+}
+
+std::optional<PlaneMatch> plane_near(const pcl::KdTreeFLANN<CloudPoint>& tree, const Cloud& map,
+                                     const Eigen::Vector3d& sensor_point,
+                                     const Eigen::Vector3d& map_point) {
+  std::vector<int> indices(kNeighbours);
+  std::vector<float> squared(kNeighbours);
+  CloudPoint query;
+  query.getVector3fMap() = map_point.cast<float>();
+  if (tree.nearestKSearch(query, kNeighbours, indices, squared) < kNeighbours ||
+      squared.back() > kMaxNeighbourSquaredDistance) {
+    return std::nullopt;
+  }
+  // n . x = -1 in the least-squares sense, then normalised: the plane n . x + d = 0.
+  Eigen::Matrix<double, kNeighbours, 3> points;
+  for (int k = 0; k < kNeighbours; ++k)
+    points.row(k) = map[indices[k]].getVector3fMap().cast<double>();
+  const Eigen::Matrix<double, kNeighbours, 1> minus_ones =
+      -Eigen::Matrix<double, kNeighbours, 1>::Ones();
+  Eigen::Vector3d normal = points.colPivHouseholderQr().solve(minus_ones);
+  const double norm = normal.norm();
+  if (!(norm > 1e-9)) return std::nullopt;
+  normal /= norm;
+  const double offset = 1.0 / norm;
+  for (int k = 0; k < kNeighbours; ++k) {
+    if (std::fabs(normal.dot(points.row(k).transpose()) + offset) > kMaxPlaneDeviation) {
+      return std::nullopt;
+    }
+  }
+  return PlaneMatch{sensor_point, normal, offset};
+}
+
+ceres::Solver::Options solver_options(int iterations) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = iterations;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  return options;
+}
+
+// J^T J of the problem in the tangent space of (rotation, translation).
+Eigen::Matrix<double, 6, 6> normal_matrix(ceres::Problem& problem, double* rotation,
+                                          double* translation) {
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = {rotation, translation};
+  options.num_threads = 1;
+  ceres::CRSMatrix jacobian;
+  problem.Evaluate(options, nullptr, nullptr, nullptr, &jacobian);
+  Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 1, 6> row;
+  for (int r = 0; r < jacobian.num_rows; ++r) {
+    row.setZero();
+    for (int k = jacobian.rows[r]; k < jacobian.rows[r + 1]; ++k)
+      row(jacobian.cols[k]) = jacobian.values[k];
+    jtj += row.transpose() * row;
+  }
+  return jtj;
+}
+
+}  // namespace
+
+CloudPtr voxel_filter(const Cloud& cloud, double leaf) {
+  CloudPtr out(new Cloud);
+  if (leaf <= 0.0 || cloud.empty()) {
+    *out = cloud;
+    return out;
+  }
+  pcl::VoxelGrid<CloudPoint> voxel;
+  const float size = static_cast<float>(leaf);
+  voxel.setLeafSize(size, size, size);
+  voxel.setInputCloud(cloud.makeShared());
+  voxel.filter(*out);
+  return out;
+}
+
+LocalMap::LocalMap(const MappingParams& params) : params_(params) {}
+
+std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
+                                  const Eigen::Vector3d& position) const {
+  std::vector<int> chosen;
+  const double radius_squared = params_.local_map_radius * params_.local_map_radius;
+  for (int i = static_cast<int>(keyframes.size()) - 1; i >= 0; --i) {
+    if ((keyframes[i].pose.translation() - position).squaredNorm() > radius_squared) continue;
+    chosen.push_back(i);
+    if (static_cast<int>(chosen.size()) >= params_.local_map_keyframes) break;
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
+bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position,
+                      int version) {
+  std::vector<int> chosen = select(keyframes, position);
+  if (chosen == selected_ && version == version_) return false;
+  selected_ = std::move(chosen);
+  version_ = version;
+  Cloud corners, surfaces;
+  for (int index : selected_) {
+    const Keyframe& keyframe = keyframes[index];
+    corners += *transform_cloud(*keyframe.corners, keyframe.pose);
+    surfaces += *transform_cloud(*keyframe.surfaces, keyframe.pose);
+  }
+  corners_ = voxel_filter(corners, params_.corner_voxel);
+  surfaces_ = voxel_filter(surfaces, params_.surface_voxel);
+  if (!corners_->empty()) corner_tree_.setInputCloud(corners_);
+  if (!surfaces_->empty()) surface_tree_.setInputCloud(surfaces_);
+  return true;
+}
+
+ScanToMapMatcher::ScanToMapMatcher(const MappingParams& params) : params_(params) {}
+
+MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfaces,
+                                       const LocalMap& map, const Eigen::Isometry3d& guess,
+                                       const std::optional<WeakDirectionPrior>& prior) const {
+  MapMatchResult result;
+  result.pose = guess;
+  if (map.empty()) return result;
+  Eigen::Quaterniond rotation(guess.linear());
+  Eigen::Vector3d translation = guess.translation();
+  Eigen::Matrix<double, 6, 6> keep = Eigen::Matrix<double, 6, 6>::Identity();
+  std::vector<LineMatch> lines;
+  std::vector<PlaneMatch> planes;
+  ceres::EigenQuaternionManifold quaternion_manifold;
+
+  for (int iteration = 0; iteration < params_.max_iterations; ++iteration) {
+    lines.clear();
+    planes.clear();
+    for (const CloudPoint& p : corners) {
+      if (map.corners()->size() < kNeighbours) break;
+      const Eigen::Vector3d sensor_point = p.getVector3fMap().cast<double>();
+      if (auto line = line_near(map.corner_tree(), *map.corners(), sensor_point,
+                                rotation * sensor_point + translation)) {
+        lines.push_back(*line);
+      }
+    }
+    for (const CloudPoint& p : surfaces) {
+      if (map.surfaces()->size() < kNeighbours) break;
+      const Eigen::Vector3d sensor_point = p.getVector3fMap().cast<double>();
+      if (auto plane = plane_near(map.surface_tree(), *map.surfaces(), sensor_point,
+                                  rotation * sensor_point + translation)) {
+        planes.push_back(*plane);
+      }
+    }
+    result.edge_matches = static_cast<int>(lines.size());
+    result.plane_matches = static_cast<int>(planes.size());
+    if (result.edge_matches + result.plane_matches < kMinMatches) break;
+
+    double q[4] = {rotation.x(), rotation.y(), rotation.z(), rotation.w()};
+    double t[3] = {translation.x(), translation.y(), translation.z()};
+    ceres::Problem::Options problem_options;
+    problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem problem(problem_options);
+    ceres::LossFunction* loss = new ceres::HuberLoss(params_.huber_loss);
+    problem.AddParameterBlock(q, 4, &quaternion_manifold);
+    problem.AddParameterBlock(t, 3);
+    for (const auto& line : lines) {
+      problem.AddResidualBlock(QuaternionPointToLine::create(line.point, line.a, line.b), loss, q,
+                               t);
+    }
+    for (const auto& plane : planes) {
+      problem.AddResidualBlock(
+          QuaternionPointToPlane::create(plane.point, plane.normal, plane.offset), loss, q, t);
+    }
+    if (prior && prior->weight > 0.0) {
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<DirectionPrior, 1, 3>(new DirectionPrior{
+              guess.linear() * prior->direction, guess.translation(), prior->weight}),
+          nullptr, t);
+    }
+    if (iteration == 0) {
+      // LOAM's degeneracy test: directions whose eigenvalue of J^T J is small get no update.
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(
+          normal_matrix(problem, q, t));
+      result.smallest_eigenvalue = solver.eigenvalues()(0);
+      Eigen::Matrix<double, 6, 6> projector = Eigen::Matrix<double, 6, 6>::Zero();
+      for (int k = 0; k < 6; ++k) {
+        const Eigen::Matrix<double, 6, 1> v = solver.eigenvectors().col(k);
+        if (solver.eigenvalues()(k) < params_.degeneracy_eigenvalue) {
+          ++result.degenerate_directions;
+        } else {
+          projector += v * v.transpose();
+        }
+      }
+      keep = projector;
+    }
+    const double q_before[4] = {q[0], q[1], q[2], q[3]};
+    const double t_before[3] = {t[0], t[1], t[2]};
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options(params_.solver_iterations), &problem, &summary);
+
+    // The step, in the tangent space, with its degenerate part removed.
+    Eigen::Matrix<double, 6, 1> step;
+    quaternion_manifold.Minus(q, q_before, step.data());
+    step.tail<3>() = Eigen::Vector3d(t[0] - t_before[0], t[1] - t_before[1], t[2] - t_before[2]);
+    if (result.degenerate_directions > 0) step = keep * step;
+    double q_after[4];
+    quaternion_manifold.Plus(q_before, step.data(), q_after);
+    rotation = Eigen::Quaterniond(q_after[3], q_after[0], q_after[1], q_after[2]).normalized();
+    translation = Eigen::Vector3d(t_before[0], t_before[1], t_before[2]) + step.tail<3>();
+    result.iterations = iteration + 1;
+    result.matched = true;
+    if (iteration >= 1 && step.head<3>().norm() < 5e-5 && step.tail<3>().norm() < 1e-3) break;
+  }
+  if (result.matched) {
+    result.pose.linear() = rotation.toRotationMatrix();
+    result.pose.translation() = translation;
+  }
+  return result;
+}
+
+}  // namespace adaptive_lego_loam
