@@ -6,11 +6,12 @@
 namespace adaptive_lego_loam {
 namespace {
 
-bool time_field_usable(const Scan& scan, double scan_period, float& earliest) {
-  if (!scan.has_time || scan.points.empty()) return false;
+bool time_field_usable(const std::vector<ScanPoint>& points, bool has_time, double scan_period,
+                       float& earliest) {
+  if (!has_time || points.empty()) return false;
   float latest = -INFINITY;
   earliest = INFINITY;
-  for (const ScanPoint& p : scan.points) {
+  for (const ScanPoint& p : points) {
     if (!std::isfinite(p.time)) continue;
     earliest = std::min(earliest, p.time);
     latest = std::max(latest, p.time);
@@ -21,23 +22,16 @@ bool time_field_usable(const Scan& scan, double scan_period, float& earliest) {
 
 }  // namespace
 
-bool sweep_fractions(const Scan& scan, const std::vector<ScanPoint>& points, double scan_period,
-                     std::vector<float>& fractions) {
+bool sweep_fractions(const std::vector<ScanPoint>& points, bool has_time, double start_azimuth,
+                     double scan_period, std::vector<float>& fractions) {
   fractions.resize(points.size());
   float earliest = 0.f;
-  if (time_field_usable(scan, scan_period, earliest)) {
+  if (time_field_usable(points, has_time, scan_period, earliest)) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       fractions[i] =
           std::clamp(static_cast<float>((points[i].time - earliest) / scan_period), 0.f, 1.f);
     }
     return true;
-  }
-  double start_azimuth = 0.0;
-  for (const ScanPoint& p : scan.points) {
-    if (std::isfinite(p.x) && std::isfinite(p.y) && (p.x != 0.f || p.y != 0.f)) {
-      start_azimuth = std::atan2(p.y, p.x);
-      break;
-    }
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
     // Clockwise: the azimuth falls as the sweep goes on.

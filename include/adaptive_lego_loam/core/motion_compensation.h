@@ -9,12 +9,12 @@
 
 namespace adaptive_lego_loam {
 
-// Each point's place in the sweep, 0 at its start and 1 at its end. From the time field when the
-// scan has one and its span is plausible (0.5 to 1.5 scan periods), else from the azimuth: the
-// sensor turns clockwise seen from above, starting at the scan's first valid point. Returns
-// whether the time field was used.
-bool sweep_fractions(const Scan& scan, const std::vector<ScanPoint>& points, double scan_period,
-                     std::vector<float>& fractions);
+// Each point's place in the sweep, 0 at its start and 1 at its end. From the points' time field
+// when they have one and its span is plausible (0.5 to 1.5 scan periods), else from the azimuth:
+// the sensor turns clockwise seen from above, starting at `start_azimuth` (rad, atan2(y, x) of
+// the sweep's first point). Returns whether the time field was used.
+bool sweep_fractions(const std::vector<ScanPoint>& points, bool has_time, double start_azimuth,
+                     double scan_period, std::vector<float>& fractions);
 
 // Moves points measured along a sweep during which the sensor moved by `sweep_motion` (pose at
 // the sweep's end in the frame of its start) into the frame of the sweep's end.

@@ -1,31 +1,18 @@
 #pragma once
-// Every stage on one scan, offline or behind the ROS nodes: the ambient filter, de-skewing,
-// features, scan-to-scan odometry, scan-to-map matching with keyframes, and transform fusion.
+// Every stage on one scan, as the offline tools run them and as the ROS nodes chain them: the
+// ambient filter (image_projection), LidarOdometry (feature_association), LidarMapping
+// (map_optimization, with transform fusion).
 
 #include <Eigen/Geometry>
 #include <vector>
 
 #include "adaptive_lego_loam/core/ambient_filter.h"
-#include "adaptive_lego_loam/core/features.h"
-#include "adaptive_lego_loam/core/keyframe.h"
-#include "adaptive_lego_loam/core/mapping.h"
-#include "adaptive_lego_loam/core/odometry.h"
+#include "adaptive_lego_loam/core/lidar_mapping.h"
+#include "adaptive_lego_loam/core/lidar_odometry.h"
 #include "adaptive_lego_loam/core/params.h"
 #include "adaptive_lego_loam/core/timing.h"
 
 namespace adaptive_lego_loam {
-
-// LeGO-LOAM's transformFusion: the high-rate odometry composed with the latest correction that
-// mapping found (map pose = correction * odometry pose).
-class TransformFusion {
- public:
-  void update_mapping(const Eigen::Isometry3d& odometry_pose, const Eigen::Isometry3d& map_pose);
-  Eigen::Isometry3d fuse(const Eigen::Isometry3d& odometry_pose) const;
-  const Eigen::Isometry3d& correction() const { return correction_; }
-
- private:
-  Eigen::Isometry3d correction_ = Eigen::Isometry3d::Identity();
-};
 
 struct FrameResult {
   int frame = 0;
@@ -41,6 +28,11 @@ struct FrameResult {
   StageTimes times;
 };
 
+// The weak-direction prior the mapping gets from the ambient filter (none when turned off or
+// when mu is unknown).
+std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
+                                                       const AmbientFilterResult& filtered);
+
 class Pipeline {
  public:
   explicit Pipeline(const Config& config);
@@ -48,38 +40,20 @@ class Pipeline {
 
   const Config& config() const { return config_; }
   const AmbientFilterResult& filter_result() const { return filtered_; }
-  const FeatureSet& features() const { return features_; }
-  const std::vector<Keyframe>& keyframes() const { return keyframes_; }
-  const LocalMap& local_map() const { return local_map_; }
-  // Every frame's pose, re-derived from its keyframe so that later keyframe corrections apply.
-  std::vector<Eigen::Isometry3d> trajectory() const;
+  const OdometryOutput& odometry_output() const { return odometry_out_; }
+  const LidarMapping& mapping() const { return mapping_; }
+  const std::vector<Keyframe>& keyframes() const { return mapping_.keyframes(); }
+  std::vector<Eigen::Isometry3d> trajectory() const { return mapping_.trajectory(); }
 
  private:
-  void deskew(const Scan& scan);
-  void estimate_motion(FrameResult& result);
-  void update_keyframes(FrameResult& result);
-
   Config config_;
   AmbientFilter filter_;
-  FeatureExtractor extractor_;
-  ScanToScanOdometry odometry_;
-  LocalMap local_map_;
-  ScanToMapMatcher matcher_;
-  TransformFusion fusion_;
-
+  LidarOdometry odometry_;
+  LidarMapping mapping_;
   AmbientFilterResult filtered_;
-  std::vector<ScanPoint> points_;  // segmented points, de-skewed
-  std::vector<float> fractions_;
-  FeatureSet features_;
-  std::vector<Keyframe> keyframes_;
-  int map_version_ = 0;
-
+  OdometryOutput odometry_out_;
+  MappingOutput mapping_out_;
   int frames_ = 0;
-  Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d odometry_pose_ = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d map_pose_ = Eigen::Isometry3d::Identity();
-  // Per frame: the keyframe it hangs from and its pose relative to that keyframe.
-  std::vector<std::pair<int, Eigen::Isometry3d>> frame_anchors_;
   FrameResult result_;
 };
 

@@ -1,0 +1,68 @@
+#pragma once
+// LeGO-LOAM's mapOptimization on the core: every scan matched against a local map of the
+// surrounding keyframes, keyframes by distance and angle, and the map frame's poses. The
+// pipeline and the map_optimization node run this same class.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+#include "adaptive_lego_loam/core/features.h"
+#include "adaptive_lego_loam/core/keyframe.h"
+#include "adaptive_lego_loam/core/mapping.h"
+#include "adaptive_lego_loam/core/params.h"
+#include "adaptive_lego_loam/core/timing.h"
+
+namespace adaptive_lego_loam {
+
+// LeGO-LOAM's transformFusion: the high-rate odometry composed with the latest correction that
+// mapping found (map pose = correction * odometry pose).
+class TransformFusion {
+ public:
+  void update_mapping(const Eigen::Isometry3d& odometry_pose, const Eigen::Isometry3d& map_pose);
+  Eigen::Isometry3d fuse(const Eigen::Isometry3d& odometry_pose) const;
+  const Eigen::Isometry3d& correction() const { return correction_; }
+
+ private:
+  Eigen::Isometry3d correction_ = Eigen::Isometry3d::Identity();
+};
+
+struct MappingOutput {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // sensor in the map frame
+  MapMatchResult match;
+  bool keyframe = false;
+  StageTimes times;
+};
+
+class LidarMapping {
+ public:
+  explicit LidarMapping(const MappingParams& params);
+  // `odometry_pose`: the scan's pose in the odometry frame; the map pose is predicted from the
+  // odometry's motion since the previous scan, then refined against the local map.
+  void process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose, double stamp,
+               const std::optional<WeakDirectionPrior>& prior, MappingOutput& out);
+
+  const std::vector<Keyframe>& keyframes() const { return keyframes_; }
+  const LocalMap& local_map() const { return local_map_; }
+  const TransformFusion& fusion() const { return fusion_; }
+  // Every scan's pose, re-derived from its keyframe so that later keyframe corrections apply.
+  std::vector<Eigen::Isometry3d> trajectory() const;
+
+ private:
+  bool needs_keyframe() const;
+  void add_keyframe(const FeatureSet& features, double stamp);
+
+  MappingParams params_;
+  LocalMap local_map_;
+  ScanToMapMatcher matcher_;
+  TransformFusion fusion_;
+  std::vector<Keyframe> keyframes_;
+  int map_version_ = 0;
+  int scans_ = 0;
+  std::optional<Eigen::Isometry3d> last_odometry_pose_;
+  Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
+  // Per scan: the keyframe it hangs from and its pose relative to that keyframe.
+  std::vector<std::pair<int, Eigen::Isometry3d>> anchors_;
+};
+
+}  // namespace adaptive_lego_loam

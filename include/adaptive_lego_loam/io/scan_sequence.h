@@ -1,0 +1,48 @@
+#pragma once
+// Sequences of scans for the offline tools: a KITTI sequence folder (velodyne/*.bin, times.txt)
+// or a folder of PCD files. Bags are read by the ROS layer (ros/bag_sequence.h) behind the same
+// interface.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "adaptive_lego_loam/core/scan.h"
+
+namespace adaptive_lego_loam {
+
+class ScanSequence {
+ public:
+  virtual ~ScanSequence() = default;
+  // The next scan, or nothing at the end. Throws IoError on a scan that cannot be read.
+  virtual std::optional<Scan> next() = 0;
+  // Number of scans, when known in advance (-1 otherwise).
+  virtual int size() const = 0;
+  virtual std::string describe() const = 0;
+};
+
+// Scan files of a folder, sorted by name; stamps from `times_file` when given (one per scan),
+// else 0.1 s apart.
+class FileSequence : public ScanSequence {
+ public:
+  FileSequence(std::vector<std::string> files, std::vector<double> stamps, std::string description);
+  std::optional<Scan> next() override;
+  int size() const override { return static_cast<int>(files_.size()); }
+  std::string describe() const override { return description_; }
+
+ private:
+  std::vector<std::string> files_;
+  std::vector<double> stamps_;
+  std::string description_;
+  std::size_t position_ = 0;
+};
+
+// A KITTI sequence folder (with velodyne/ inside, or the velodyne folder itself) or a folder of
+// PCD files. Throws IoError naming the path when it is neither.
+std::unique_ptr<ScanSequence> open_folder_sequence(const std::string& path);
+
+// The KITTI calib.txt beside a sequence folder's velodyne/, if there is one.
+std::optional<std::string> kitti_calib_beside(const std::string& path);
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,84 @@
+#include "adaptive_lego_loam/core/lidar_mapping.h"
+
+#include <cmath>
+
+namespace adaptive_lego_loam {
+
+void TransformFusion::update_mapping(const Eigen::Isometry3d& odometry_pose,
+                                     const Eigen::Isometry3d& map_pose) {
+  correction_ = map_pose * odometry_pose.inverse();
+}
+
+Eigen::Isometry3d TransformFusion::fuse(const Eigen::Isometry3d& odometry_pose) const {
+  return correction_ * odometry_pose;
+}
+
+LidarMapping::LidarMapping(const MappingParams& params)
+    : params_(params), local_map_(params), matcher_(params) {}
+
+bool LidarMapping::needs_keyframe() const {
+  if (keyframes_.empty()) return true;
+  const Eigen::Isometry3d since = keyframes_.back().pose.inverse() * pose_;
+  return since.translation().norm() >= params_.keyframe_distance ||
+         Eigen::AngleAxisd(since.linear()).angle() >= params_.keyframe_angle_deg * M_PI / 180.0;
+}
+
+void LidarMapping::add_keyframe(const FeatureSet& features, double stamp) {
+  Keyframe keyframe;
+  keyframe.index = static_cast<int>(keyframes_.size());
+  keyframe.frame = scans_;
+  keyframe.stamp = stamp;
+  keyframe.pose = pose_;
+  keyframe.corners = voxel_filter(*features.less_sharp, params_.corner_voxel);
+  Cloud surfaces = *features.less_flat;
+  surfaces += *features.outliers;
+  keyframe.surfaces = voxel_filter(surfaces, params_.surface_voxel);
+  keyframe.outliers = features.outliers;
+  keyframes_.push_back(std::move(keyframe));
+}
+
+void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose,
+                           double stamp, const std::optional<WeakDirectionPrior>& prior,
+                           MappingOutput& out) {
+  Stopwatch watch;
+  out.times.clear();
+  const Eigen::Isometry3d motion = last_odometry_pose_
+                                       ? last_odometry_pose_->inverse() * odometry_pose
+                                       : Eigen::Isometry3d::Identity();
+  last_odometry_pose_ = odometry_pose;
+  Eigen::Isometry3d pose = pose_ * motion;
+  out.match = MapMatchResult();
+  out.match.pose = pose;
+
+  if (params_.enabled && !keyframes_.empty()) {
+    local_map_.update(keyframes_, pose.translation(), map_version_);
+    out.times.add("local_map", watch.lap_ms());
+    const CloudPtr corners = voxel_filter(*features.less_sharp, params_.corner_voxel);
+    Cloud surface_points = *features.less_flat;
+    surface_points += *features.outliers;
+    const CloudPtr surfaces = voxel_filter(surface_points, params_.surface_voxel);
+    out.match = matcher_.match(*corners, *surfaces, local_map_, pose, prior);
+    pose = out.match.pose;
+    out.times.add("mapping", watch.lap_ms());
+  }
+  pose_ = pose;
+  fusion_.update_mapping(odometry_pose, pose_);
+  out.pose = pose_;
+  out.keyframe = needs_keyframe();
+  if (out.keyframe) add_keyframe(features, stamp);
+  const Keyframe& anchor = keyframes_.back();
+  anchors_.emplace_back(anchor.index, anchor.pose.inverse() * pose_);
+  ++scans_;
+  out.times.add("keyframes", watch.lap_ms());
+}
+
+std::vector<Eigen::Isometry3d> LidarMapping::trajectory() const {
+  std::vector<Eigen::Isometry3d> poses;
+  poses.reserve(anchors_.size());
+  for (const auto& [keyframe, relative] : anchors_) {
+    poses.push_back(keyframes_[keyframe].pose * relative);
+  }
+  return poses;
+}
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,37 @@
+#include "adaptive_lego_loam/core/lidar_odometry.h"
+
+#include "adaptive_lego_loam/core/motion_compensation.h"
+
+namespace adaptive_lego_loam {
+
+LidarOdometry::LidarOdometry(const SensorParams& sensor, const FeatureParams& features,
+                             const OdometryParams& odometry)
+    : sensor_(sensor), params_(odometry), extractor_(features), registration_(odometry) {}
+
+void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out) {
+  Stopwatch watch;
+  out.times.clear();
+  points_ = cloud.points;
+  out.deskewed_by_time_field = false;
+  if (!sensor_.deskewed && !first_) {
+    // Constant velocity: the sweep moved as much as the last scan-to-scan motion. CloudInfo's
+    // orientation is LeGO-LOAM's clockwise angle, the negated azimuth.
+    out.deskewed_by_time_field = sweep_fractions(points_, has_time, -cloud.info.start_orientation,
+                                                 sensor_.scan_period, fractions_);
+    deskew_to_sweep_end(last_motion_, fractions_, points_);
+  }
+  out.times.add("deskew", watch.lap_ms());
+  extractor_.extract(cloud, points_, out.features);
+  out.times.add("features", watch.lap_ms());
+
+  const Eigen::Isometry3d prediction =
+      params_.constant_velocity ? last_motion_ : Eigen::Isometry3d::Identity();
+  out.odometry = registration_.register_scan(out.features, prediction);
+  last_motion_ = out.odometry.motion;
+  pose_ = pose_ * out.odometry.motion;
+  out.pose = pose_;
+  first_ = false;
+  out.times.add("odometry", watch.lap_ms());
+}
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,219 @@
+// Runs the whole pipeline over a sequence (KITTI folder, PCD folder or bag) and writes the poses
+// (KITTI and TUM), per-frame stage times, the ambient filter's output and a summary.
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "adaptive_lego_loam/core/pipeline.h"
+#include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/pose_files.h"
+#include "adaptive_lego_loam/io/progress.h"
+#include "adaptive_lego_loam/io/scan_sequence.h"
+#include "adaptive_lego_loam/ros/bag_sequence.h"
+
+using namespace adaptive_lego_loam;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The columns of timing.csv, in pipeline order; stages a frame did not run are 0.
+const std::vector<std::string> kStages = {
+    "projection",       "ground",          "euclidean_clustering",
+    "skeleton",         "normals",         "degeneration",
+    "depth_clustering", "segmented_cloud", "deskew",
+    "features",         "odometry",        "local_map",
+    "mapping",          "keyframes",       "loop_closure"};
+
+struct Options {
+  std::string config, input, topic, output;
+  double beta0 = -1.0;
+  bool adaptive = false;
+  int max_frames = -1;
+};
+
+std::unique_ptr<ScanSequence> open_sequence(const Options& options) {
+  if (fs::is_directory(options.input)) return open_folder_sequence(options.input);
+  if (fs::path(options.input).extension() == ".bag") {
+    return ros_bridge::open_bag_sequence(options.input, options.topic);
+  }
+  throw IoError(options.input +
+                ": expected a KITTI sequence folder, a folder of .bin/.pcd scans "
+                "or a .bag file");
+}
+
+class Outputs {
+ public:
+  explicit Outputs(const std::string& dir) : dir_(dir) {
+    fs::create_directories(dir);
+    timing_.open(path("timing.csv"));
+    degeneration_.open(path("degeneration.csv"));
+    if (!timing_ || !degeneration_) throw IoError(dir + ": cannot write outputs there");
+    timing_ << "frame";
+    for (const auto& stage : kStages)
+      timing_ << "," << stage;
+    timing_ << ",total,rss_mb\n";
+    degeneration_ << "frame,mu,beta0_deg,direction_x,direction_y,skeleton_points,normals,valid\n";
+  }
+
+  std::string path(const std::string& name) const { return (fs::path(dir_) / name).string(); }
+
+  void add(const FrameResult& frame, const AmbientFilterResult& filtered) {
+    timing_ << frame.frame;
+    for (const auto& stage : kStages)
+      timing_ << "," << frame.times.get(stage);
+    timing_ << "," << frame.times.total() << "," << resident_memory_mb() << "\n";
+    const Degeneration& d = filtered.degeneration;
+    degeneration_ << frame.frame << "," << filtered.mu << "," << filtered.beta0_deg << ","
+                  << d.weak_direction.x() << "," << d.weak_direction.y() << ","
+                  << filtered.skeleton_points << "," << d.normals << "," << int(d.valid) << "\n";
+    stamps.push_back(frame.stamp);
+    for (const auto& [stage, ms] : frame.times.entries())
+      stage_ms[stage].push_back(ms);
+    total_ms.push_back(frame.times.total());
+  }
+
+  std::vector<double> stamps;
+  std::map<std::string, std::vector<double>> stage_ms;
+  std::vector<double> total_ms;
+
+ private:
+  std::string dir_;
+  std::ofstream timing_, degeneration_;
+};
+
+nlohmann::json statistics(std::vector<double> values) {
+  if (values.empty()) return nullptr;
+  std::sort(values.begin(), values.end());
+  double sum = 0.0;
+  for (double v : values)
+    sum += v;
+  return {{"mean", sum / values.size()},
+          {"median", values[values.size() / 2]},
+          {"p95", values[static_cast<std::size_t>(0.95 * (values.size() - 1))]},
+          {"max", values.back()}};
+}
+
+void write_poses(const Options& options, const Pipeline& pipeline, const Outputs& outputs) {
+  const std::vector<Eigen::Isometry3d> poses = pipeline.trajectory();
+  write_kitti_poses(outputs.path("poses_kitti.txt"), poses);
+  write_tum_poses(outputs.path("poses_tum.txt"), outputs.stamps, poses);
+  // KITTI's ground truth is in the left camera's frame: with a calib.txt beside the scans, also
+  // write the poses there (camera pose = Tr * lidar pose * Tr^-1).
+  if (const auto calib = kitti_calib_beside(options.input)) {
+    const Eigen::Isometry3d tr = read_kitti_calib_tr(*calib);
+    std::vector<Eigen::Isometry3d> camera;
+    for (const auto& pose : poses)
+      camera.push_back(tr * pose * tr.inverse());
+    write_kitti_poses(outputs.path("poses_camera.txt"), camera);
+  }
+}
+
+int run(const Options& options) {
+  Config config = load_config(options.config);
+  if (options.beta0 > 0.0) {
+    config.ambient.mode = Beta0Mode::kFixed;
+    config.ambient.fixed_beta0_deg = options.beta0;
+  } else if (options.adaptive) {
+    config.ambient.mode = Beta0Mode::kAdaptive;
+  }
+  std::unique_ptr<ScanSequence> sequence = open_sequence(options);
+  Outputs outputs(options.output);
+  Pipeline pipeline(config);
+  const int total = options.max_frames >= 0 && sequence->size() >= 0
+                        ? std::min(options.max_frames, sequence->size())
+                        : sequence->size();
+  std::fprintf(stderr, "run_sequence: %s, config %s, %s\n", sequence->describe().c_str(),
+               options.config.c_str(),
+               config.ambient.mode == Beta0Mode::kAdaptive
+                   ? "adaptive beta0"
+                   : ("fixed beta0 " + std::to_string(config.ambient.fixed_beta0_deg)).c_str());
+  ProgressBar progress("run_sequence", total);
+  Stopwatch wall;
+  int frames = 0, empty_scans = 0;
+  std::string failure;
+  try {
+    while (options.max_frames < 0 || frames < options.max_frames) {
+      std::optional<Scan> scan = sequence->next();
+      if (!scan) break;
+      const FrameResult& result = pipeline.process(*scan);
+      empty_scans += !result.valid_scan;
+      outputs.add(result, pipeline.filter_result());
+      progress.update(++frames);
+    }
+  } catch (const std::exception& e) {
+    failure = e.what();  // keep what was done so far
+  }
+  progress.finish();
+  const double wall_s = wall.elapsed_ms() / 1000.0;
+  if (frames > 0) write_poses(options, pipeline, outputs);
+
+  nlohmann::json summary;
+  summary["input"] = options.input;
+  summary["config"] = options.config;
+  summary["beta0_mode"] = config.ambient.mode == Beta0Mode::kAdaptive ? "adaptive" : "fixed";
+  if (config.ambient.mode == Beta0Mode::kFixed)
+    summary["beta0_deg"] = config.ambient.fixed_beta0_deg;
+  summary["frames"] = frames;
+  summary["scans_without_valid_points"] = empty_scans;
+  summary["keyframes"] = pipeline.keyframes().size();
+  summary["wall_time_s"] = wall_s;
+  summary["frames_per_second"] = wall_s > 0 ? frames / wall_s : 0.0;
+  summary["frame_ms"] = statistics(outputs.total_ms);
+  for (const auto& [stage, values] : outputs.stage_ms)
+    summary["stage_ms"][stage] = statistics(values);
+  summary["peak_rss_mb"] = peak_resident_memory_mb();
+  if (!failure.empty()) summary["error"] = failure;
+  std::ofstream(outputs.path("summary.json")) << summary.dump(2) << "\n";
+
+  if (!failure.empty()) {
+    std::fprintf(stderr, "run_sequence: %s (after %d frames; their outputs are written)\n",
+                 failure.c_str(), frames);
+    return 1;
+  }
+  const nlohmann::json& frame_ms = summary["frame_ms"];
+  std::printf(
+      "frames %d, keyframes %zu, %.1f frames/s, frame ms mean %.1f p95 %.1f max %.1f, "
+      "peak RSS %.0f MB\noutputs in %s\n",
+      frames, pipeline.keyframes().size(), frames / std::max(wall_s, 1e-9),
+      frame_ms.is_null() ? 0.0 : frame_ms["mean"].get<double>(),
+      frame_ms.is_null() ? 0.0 : frame_ms["p95"].get<double>(),
+      frame_ms.is_null() ? 0.0 : frame_ms["max"].get<double>(), peak_resident_memory_mb(),
+      options.output.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Run adaptive_lego_loam over a sequence: KITTI folder (velodyne/*.bin), a folder of "
+      ".bin/.pcd scans, or a bag. Writes poses_kitti.txt, poses_tum.txt, timing.csv, "
+      "degeneration.csv and summary.json to the output folder."};
+  Options options;
+  app.add_option("--config", options.config, "sensor config (config/*.yaml)")->required();
+  app.add_option("--input", options.input, "KITTI sequence folder, scan folder or .bag")
+      ->required();
+  app.add_option("--topic", options.topic, "PointCloud2 topic in a bag (default: its only one)");
+  auto* beta0 = app.add_option("--beta0", options.beta0,
+                               "fixed depth-clustering threshold (deg): "
+                               "LeGO-LOAM mode")
+                    ->check(CLI::Range(0.1, 89.9));
+  app.add_flag("--adaptive", options.adaptive, "adaptive beta0 from the degeneration degree")
+      ->excludes(beta0);
+  app.add_option("--max-frames", options.max_frames, "stop after this many frames")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--output", options.output, "output folder")->required();
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return run(options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "run_sequence: %s\n", e.what());
+    return 1;
+  }
+}
