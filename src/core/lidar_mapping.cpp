@@ -53,10 +53,10 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   if (params_.enabled && !keyframes_.empty()) {
     local_map_.update(keyframes_, pose.translation(), map_version_);
     out.times.add("local_map", watch.lap_ms());
-    const CloudPtr corners = voxel_filter(*features.less_sharp, params_.corner_voxel);
+    const CloudPtr corners = voxel_filter(*features.less_sharp, params_.scan_corner_voxel);
     Cloud surface_points = *features.less_flat;
     surface_points += *features.outliers;
-    const CloudPtr surfaces = voxel_filter(surface_points, params_.surface_voxel);
+    const CloudPtr surfaces = voxel_filter(surface_points, params_.scan_surface_voxel);
     out.match = matcher_.match(*corners, *surfaces, local_map_, pose, prior);
     pose = out.match.pose;
     out.times.add("mapping", watch.lap_ms());

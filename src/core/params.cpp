@@ -228,6 +228,8 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.number("huber_loss", m.huber_loss, 0.001, 100.0);
   in.number("corner_voxel", m.corner_voxel, 0.01, 10.0);
   in.number("surface_voxel", m.surface_voxel, 0.01, 10.0);
+  in.number("scan_corner_voxel", m.scan_corner_voxel, 0.0, 10.0);
+  in.number("scan_surface_voxel", m.scan_surface_voxel, 0.0, 10.0);
   in.number("keyframe_distance", m.keyframe_distance, 0.0, 100.0);
   in.number("keyframe_angle_deg", m.keyframe_angle_deg, 0.0, 180.0);
   in.number("local_map_radius", m.local_map_radius, 1.0, 1000.0);

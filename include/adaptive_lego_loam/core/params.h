@@ -113,7 +113,9 @@ struct MappingParams {
   int solver_iterations = 4;
   double huber_loss = 0.1;             // m
   double corner_voxel = 0.2;           // m, local map and current corners
-  double surface_voxel = 0.4;          // m, local map and current surfaces
+  double surface_voxel = 0.4;          // m, local map surfaces
+  double scan_corner_voxel = 0.2;      // m, the current scan's edges matched against the map
+  double scan_surface_voxel = 0.4;     // m, the current scan's surfaces matched against the map
   double keyframe_distance = 1.0;      // m between keyframes ...
   double keyframe_angle_deg = 10.0;    // ... or this much rotation
   double local_map_radius = 50.0;      // m: keyframes within this distance form the local map
