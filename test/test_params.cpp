@@ -91,3 +91,39 @@ TEST(Params, MissingFileAndBrokenYaml) {
   }
   EXPECT_NE(error_of("sensor: [1, 2\n").find("not valid YAML"), std::string::npos);
 }
+
+TEST(Params, LoopClosureSection) {
+  const Config shipped = load_config(std::string(CONFIG_DIR) + "/vlp16.yaml");
+  EXPECT_TRUE(shipped.loop_closure.enabled);
+  EXPECT_DOUBLE_EQ(shipped.loop_closure.search_radius, 7.0);
+  EXPECT_DOUBLE_EQ(shipped.loop_closure.min_time_gap, 30.0);
+  EXPECT_EQ(shipped.loop_closure.neighbourhood_keyframes, 25);
+  EXPECT_DOUBLE_EQ(shipped.loop_closure.fitness_threshold, 0.3);
+  EXPECT_EQ(shipped.loop_closure.robust_loss, RobustLoss::kCauchy);
+
+  const Config config = parse_config(std::string(kMinimal) +
+                                         "loop_closure:\n  enabled: false\n  search_radius: 12\n"
+                                         "  robust_loss: huber\n  robust_loss_scale: 1.5\n"
+                                         "  loop_sigma_rotation_deg: 2\n",
+                                     "test.yaml");
+  EXPECT_FALSE(config.loop_closure.enabled);
+  EXPECT_DOUBLE_EQ(config.loop_closure.search_radius, 12.0);
+  EXPECT_EQ(config.loop_closure.robust_loss, RobustLoss::kHuber);
+  EXPECT_DOUBLE_EQ(config.loop_closure.robust_loss_scale, 1.5);
+  EXPECT_DOUBLE_EQ(config.loop_closure.loop_sigma_rotation_deg, 2.0);
+  EXPECT_DOUBLE_EQ(config.loop_closure.min_time_gap, LoopClosureParams().min_time_gap);
+
+  const std::string negative_sigma =
+      error_of(std::string(kMinimal) + "loop_closure:\n  odometry_sigma_translation: -1\n");
+  EXPECT_NE(negative_sigma.find("loop_closure.odometry_sigma_translation"), std::string::npos)
+      << negative_sigma;
+  EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  icp_max_iterations: 0\n")
+                .find("loop_closure.icp_max_iterations"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  robust_loss: tukey\n")
+                .find("cauchy, huber, none"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  search_radus: 5\n")
+                .find("loop_closure.search_radus"),
+            std::string::npos);
+}

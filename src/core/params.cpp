@@ -236,6 +236,24 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.number("local_map_keyframes", m.local_map_keyframes, 1, 10000);
   in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
   in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
+void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
+  in.boolean("enabled", l.enabled);
+  in.number("search_radius", l.search_radius, 0.1, 1000.0);
+  in.number("min_time_gap", l.min_time_gap, 0.0, 1.0e6);
+  in.number("neighbourhood_keyframes", l.neighbourhood_keyframes, 0, 10000);
+  in.number("fitness_threshold", l.fitness_threshold, 1.0e-6, 100.0);
+  in.number("voxel_size", l.voxel_size, 0.0, 10.0);
+  in.number("icp_max_correspondence_distance", l.icp_max_correspondence_distance, 0.01, 1000.0);
+  in.number("icp_max_iterations", l.icp_max_iterations, 1, 10000);
+  in.number("odometry_sigma_translation", l.odometry_sigma_translation, 1.0e-6, 100.0);
+  in.number("odometry_sigma_rotation_deg", l.odometry_sigma_rotation_deg, 1.0e-6, 180.0);
+  in.number("loop_sigma_translation", l.loop_sigma_translation, 1.0e-6, 100.0);
+  in.number("loop_sigma_rotation_deg", l.loop_sigma_rotation_deg, 1.0e-6, 180.0);
+  in.choice("robust_loss", l.robust_loss,
+            {{"cauchy", RobustLoss::kCauchy},
+             {"huber", RobustLoss::kHuber},
+             {"none", RobustLoss::kNone}});
+  in.number("robust_loss_scale", l.robust_loss_scale, 0.01, 1000.0);
   in.reject_unknown_keys();
 }
 
@@ -301,11 +319,14 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
   read_odometry(odometry, config.odometry);
   SectionReader mapping = section("mapping");
   read_mapping(mapping, config.mapping);
+  SectionReader loop_closure = section("loop_closure");
+  read_loop_closure(loop_closure, config.loop_closure);
 
   for (const auto& entry : root) {
     const std::string name = entry.first.as<std::string>();
     static const std::set<std::string> known = {"sensor",   "segmentation", "ambient_filter",
-                                                "features", "odometry",     "mapping"};
+                                                "features", "odometry",     "mapping",
+                                                "loop_closure"};
     if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
   }
   validate(config.sensor, source);

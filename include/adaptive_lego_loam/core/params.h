@@ -124,6 +124,33 @@ struct MappingParams {
   // Weight of a prior pulling the translation along the ambient filter's weak direction toward
   // the odometry's prediction, times mu; 0 turns it off.
   double weak_direction_prior = 0.0;
+// Robust loss on a pose-graph edge's whitened residual norm |r| (in sigmas). kHuber: quadratic up
+// to |r| = scale, linear beyond. kCauchy: scale^2 * log(1 + |r|^2 / scale^2), whose pull on the
+// poses fades once |r| is well beyond scale.
+enum class RobustLoss { kNone, kHuber, kCauchy };
+
+// Loop detection as LeGO-LOAM (ICP of the newest keyframe against an older one's neighbourhood)
+// and the pose-graph weights used when a loop is closed.
+struct LoopClosureParams {
+  bool enabled = true;
+  double search_radius = 7.0;        // m: candidates lie this close to the current keyframe
+  double min_time_gap = 30.0;        // s: and are at least this much older
+  int neighbourhood_keyframes = 25;  // the candidate's map: it and this many on either side
+  double fitness_threshold = 0.3;    // m^2: accepted below this ICP fitness (mean squared distance)
+  double voxel_size = 0.4;           // m: leaf of the candidate's map; 0 = no filter
+  double icp_max_correspondence_distance = 100.0;  // m
+  int icp_max_iterations = 100;
+  // Pose-graph weights (1-sigma errors): of the odometry between consecutive keyframes and of a
+  // loop measured by ICP.
+  double odometry_sigma_translation = 0.05;  // m
+  double odometry_sigma_rotation_deg = 0.5;
+  double loop_sigma_translation = 0.2;  // m
+  double loop_sigma_rotation_deg = 1.0;
+  // On loop edges. With the Cauchy loss a loop that disagrees with the odometry by more than about
+  // 2 * robust_loss_scale accumulated odometry sigmas (Mahalanobis) is mostly ignored; below
+  // that it closes fully.
+  RobustLoss robust_loss = RobustLoss::kCauchy;
+  double robust_loss_scale = 2.0;  // sigmas
 };
 
 struct Config {
@@ -134,6 +161,7 @@ struct Config {
   FeatureParams features;
   OdometryParams odometry;
   MappingParams mapping;
+  LoopClosureParams loop_closure;
 };
 
 // Loads and checks a config file. Throws ConfigError naming the file, the key and the allowed

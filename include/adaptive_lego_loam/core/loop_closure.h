@@ -1,0 +1,83 @@
+#pragma once
+// Loop closure on keyframes, as LeGO-LOAM: find an old keyframe near the newest one, check the
+// match by ICP, and close the loop in a pose graph.
+//
+// Use from the mapping stage:
+//   KeyframeGraph graph(params);
+//   for each new keyframe:  keyframes.push_back(kf); graph.add_keyframe(kf);
+//   periodically:
+//     LoopDetection loop = detect_loop(keyframes, newest_index, params);
+//     if (loop.accepted()) { graph.add_loop(loop); graph.optimize(keyframes); }
+// optimize() rewrites every keyframe pose. The mapping's running pose estimate should then be
+// moved with the newest keyframe: T <- T_newest_after * T_newest_before^-1 * T.
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <vector>
+
+#include "adaptive_lego_loam/core/keyframe.h"
+#include "adaptive_lego_loam/core/params.h"
+#include "adaptive_lego_loam/core/pose_graph.h"
+
+namespace adaptive_lego_loam {
+
+enum class LoopStatus {
+  kAccepted,
+  kDisabled,      // params.enabled is false
+  kNoCandidate,   // no keyframe near enough and old enough
+  kTooFewPoints,  // the current cloud or the candidate's map is (nearly) empty
+  kNotConverged,  // ICP did not converge
+  kPoorFitness,   // ICP converged with fitness >= fitness_threshold
+};
+const char* to_string(LoopStatus status);
+
+struct LoopDetection {
+  LoopStatus status = LoopStatus::kNoCandidate;
+  int current_index = -1;
+  int matched_index = -1;                                    // the candidate, once one was found
+  double fitness = std::numeric_limits<double>::infinity();  // m^2, once ICP ran
+  // ICP's map-frame correction of the current keyframe: corrected pose = correction * pose.
+  Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
+  // T_matched^-1 * corrected T_current: the loop edge's measurement (when accepted).
+  Eigen::Isometry3d relative_pose = Eigen::Isometry3d::Identity();
+  double time_ms = 0.0;
+
+  bool accepted() const { return status == LoopStatus::kAccepted; }
+};
+
+// The keyframe nearest to keyframes[current_index] (3-D distance between positions) within
+// search_radius and with a stamp at least min_time_gap older; -1 when there is none. Ties go to
+// the lower index.
+int find_loop_candidate(const std::vector<Keyframe>& keyframes, int current_index,
+                        const LoopClosureParams& params);
+
+// Finds a candidate and aligns the current keyframe's cloud (corners + surfaces + outliers, placed
+// in the map frame by its pose) to the candidate's map: the candidate and up to
+// neighbourhood_keyframes keyframes on either side of it (leaving out any less than min_time_gap
+// older than the current one), in the map frame, voxel-filtered. Accepted when ICP converged with
+// fitness below fitness_threshold. Throws std::out_of_range for a bad current_index.
+LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
+                          const LoopClosureParams& params);
+
+// A pose graph kept alongside the keyframe list: node i is keyframe i.
+class KeyframeGraph {
+ public:
+  explicit KeyframeGraph(const LoopClosureParams& params);
+
+  // Adds the next keyframe (keyframe.index must equal the number added so far). From the second
+  // on, it is tied to the previous one by an odometry edge measuring their poses as they are now.
+  void add_keyframe(const Keyframe& keyframe);
+  // Adds an accepted loop as a loop edge; throws std::invalid_argument otherwise.
+  void add_loop(const LoopDetection& loop);
+  // Optimises and writes the poses back into keyframes (whose size must equal the node count).
+  PoseGraphSummary optimize(std::vector<Keyframe>& keyframes);
+
+  const PoseGraph& graph() const { return graph_; }
+
+ private:
+  Information6 odometry_information_;
+  Information6 loop_information_;
+  PoseGraph graph_;
+};
+
+}  // namespace adaptive_lego_loam
