@@ -13,8 +13,32 @@ Eigen::Isometry3d TransformFusion::fuse(const Eigen::Isometry3d& odometry_pose) 
   return correction_ * odometry_pose;
 }
 
-LidarMapping::LidarMapping(const MappingParams& params)
-    : params_(params), local_map_(params), matcher_(params) {}
+namespace {
+constexpr double kLoopAttemptPeriod = 1.0;  // s
+}  // namespace
+
+LidarMapping::LidarMapping(const MappingParams& params, const LoopClosureParams& loop_params)
+    : params_(params),
+      loop_params_(loop_params),
+      graph_(loop_params),
+      local_map_(params),
+      matcher_(params) {}
+
+void LidarMapping::try_loop_closure(double stamp, MappingOutput& out) {
+  if (!loop_params_.enabled || stamp - last_loop_attempt_ < kLoopAttemptPeriod) return;
+  last_loop_attempt_ = stamp;
+  const int newest = static_cast<int>(keyframes_.size()) - 1;
+  out.loop = detect_loop(keyframes_, newest, loop_params_);
+  if (!out.loop->accepted()) return;
+  const Eigen::Isometry3d newest_before = keyframes_[newest].pose;
+  graph_.add_loop(*out.loop);
+  graph_.optimize(keyframes_);
+  // The running pose moves with the newest keyframe; the local map is rebuilt from the
+  // corrected keyframes.
+  pose_ = keyframes_[newest].pose * newest_before.inverse() * pose_;
+  ++map_version_;
+  ++loops_closed_;
+}
 
 bool LidarMapping::needs_keyframe() const {
   if (keyframes_.empty()) return true;
@@ -34,6 +58,7 @@ void LidarMapping::add_keyframe(const FeatureSet& features, double stamp) {
   surfaces += *features.outliers;
   keyframe.surfaces = voxel_filter(surfaces, params_.surface_voxel);
   keyframe.outliers = features.outliers;
+  graph_.add_keyframe(keyframe);
   keyframes_.push_back(std::move(keyframe));
 }
 
@@ -65,7 +90,15 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   fusion_.update_mapping(odometry_pose, pose_);
   out.pose = pose_;
   out.keyframe = needs_keyframe();
-  if (out.keyframe) add_keyframe(features, stamp);
+  out.loop.reset();
+  if (out.keyframe) {
+    add_keyframe(features, stamp);
+    out.times.add("keyframes", watch.lap_ms());
+    try_loop_closure(stamp, out);
+    out.times.add("loop_closure", watch.lap_ms());
+    out.pose = pose_;
+    fusion_.update_mapping(odometry_pose, pose_);
+  }
   const Keyframe& anchor = keyframes_.back();
   anchors_.emplace_back(anchor.index, anchor.pose.inverse() * pose_);
   ++scans_;

@@ -236,6 +236,9 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.number("local_map_keyframes", m.local_map_keyframes, 1, 10000);
   in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
   in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
+  in.reject_unknown_keys();
+}
+
 void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
   in.boolean("enabled", l.enabled);
   in.number("search_radius", l.search_radius, 0.1, 1000.0);

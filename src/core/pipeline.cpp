@@ -14,7 +14,7 @@ Pipeline::Pipeline(const Config& config)
     : config_(config),
       filter_(config),
       odometry_(config.sensor, config.features, config.odometry),
-      mapping_(config.mapping) {}
+      mapping_(config.mapping, config.loop_closure) {}
 
 const FrameResult& Pipeline::process(const Scan& scan) {
   result_ = FrameResult();
@@ -41,6 +41,7 @@ const FrameResult& Pipeline::process(const Scan& scan) {
   result_.mapping = mapping_out_.match;
   result_.pose = mapping_out_.pose;
   result_.keyframe = mapping_out_.keyframe;
+  result_.loop_closed = mapping_out_.loop && mapping_out_.loop->accepted();
   return result_;
 }
 

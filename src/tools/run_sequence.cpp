@@ -162,6 +162,7 @@ int run(const Options& options) {
   summary["frames"] = frames;
   summary["scans_without_valid_points"] = empty_scans;
   summary["keyframes"] = pipeline.keyframes().size();
+  summary["loops_closed"] = pipeline.mapping().loops_closed();
   summary["wall_time_s"] = wall_s;
   summary["frames_per_second"] = wall_s > 0 ? frames / wall_s : 0.0;
   summary["frame_ms"] = statistics(outputs.total_ms);

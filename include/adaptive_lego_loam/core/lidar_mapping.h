@@ -9,6 +9,7 @@
 
 #include "adaptive_lego_loam/core/features.h"
 #include "adaptive_lego_loam/core/keyframe.h"
+#include "adaptive_lego_loam/core/loop_closure.h"
 #include "adaptive_lego_loam/core/mapping.h"
 #include "adaptive_lego_loam/core/params.h"
 #include "adaptive_lego_loam/core/timing.h"
@@ -31,12 +32,13 @@ struct MappingOutput {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // sensor in the map frame
   MapMatchResult match;
   bool keyframe = false;
+  std::optional<LoopDetection> loop;  // when a loop closure was attempted on this scan
   StageTimes times;
 };
 
 class LidarMapping {
  public:
-  explicit LidarMapping(const MappingParams& params);
+  LidarMapping(const MappingParams& params, const LoopClosureParams& loop_params);
   // `odometry_pose`: the scan's pose in the odometry frame; the map pose is predicted from the
   // odometry's motion since the previous scan, then refined against the local map.
   void process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose, double stamp,
@@ -45,14 +47,22 @@ class LidarMapping {
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
   const LocalMap& local_map() const { return local_map_; }
   const TransformFusion& fusion() const { return fusion_; }
+  int loops_closed() const { return loops_closed_; }
   // Every scan's pose, re-derived from its keyframe so that later keyframe corrections apply.
   std::vector<Eigen::Isometry3d> trajectory() const;
 
  private:
   bool needs_keyframe() const;
   void add_keyframe(const FeatureSet& features, double stamp);
+  // LeGO-LOAM tries once a second of data: with a new keyframe, at most every
+  // kLoopAttemptPeriod seconds.
+  void try_loop_closure(double stamp, MappingOutput& out);
 
   MappingParams params_;
+  LoopClosureParams loop_params_;
+  KeyframeGraph graph_;
+  double last_loop_attempt_ = -1e18;
+  int loops_closed_ = 0;
   LocalMap local_map_;
   ScanToMapMatcher matcher_;
   TransformFusion fusion_;

@@ -124,6 +124,8 @@ struct MappingParams {
   // Weight of a prior pulling the translation along the ambient filter's weak direction toward
   // the odometry's prediction, times mu; 0 turns it off.
   double weak_direction_prior = 0.0;
+};
+
 // Robust loss on a pose-graph edge's whitened residual norm |r| (in sigmas). kHuber: quadratic up
 // to |r| = scale, linear beyond. kCauchy: scale^2 * log(1 + |r|^2 / scale^2), whose pull on the
 // poses fades once |r| is well beyond scale.

@@ -21,6 +21,7 @@ struct FrameResult {
   Eigen::Isometry3d odometry_pose = Eigen::Isometry3d::Identity();  // scan-to-scan alone
   bool valid_scan = true;  // false when the scan had no valid point (pose predicted)
   bool keyframe = false;
+  bool loop_closed = false;
   bool deskewed_by_time_field = false;
   OdometryResult odometry;
   MapMatchResult mapping;
