@@ -52,7 +52,7 @@ void EuclideanClustering::cluster(const RangeImage& image, const std::vector<uin
   // Tests neighbour (row, col) of `a` against the threshold and queues it when it joins.
   auto try_join = [&](const ScanPoint& a, int row, int col, float factor) {
     const int cell = row * cols + col;
-    if (!free_[cell]) return;
+    if (!free_[cell]) return;  // also the centre, labelled before its window is searched
     const ScanPoint& b = image.point(cell);
     const float dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
     const float range_b = image.range(cell);
@@ -80,25 +80,29 @@ void EuclideanClustering::cluster(const RangeImage& image, const std::vector<uin
       for (int row_step = -w; row_step <= w; ++row_step) {
         const int row = current.row + row_step;
         if (row < 0 || row >= rows) continue;
-        // Most of a window is already labelled once a cluster grows: skip free-less rows a word
-        // at a time.
-        if (interior) {
-          const uint8_t* window_row = &free_[row * cols + current.col - w];
-          bool any_free = false;
-          for (int byte = 0; byte < width && !any_free; byte += 8) {
-            uint64_t word;
-            std::memcpy(&word, window_row + byte, 8);
-            const int bytes = std::min(8, width - byte);
-            const uint64_t mask = bytes == 8 ? ~0ull : (1ull << (8 * bytes)) - 1;
-            any_free = (word & mask) != 0;
+        const float* row_factor = factor + (row_step + w) * width + w;  // indexed by col_step
+        if (!interior) {  // the window wraps around column 0: cell by cell
+          for (int col_step = -w; col_step <= w; ++col_step) {
+            int col = current.col + col_step;
+            col += col < 0 ? cols : (col >= cols ? -cols : 0);
+            try_join(a, row, col, row_factor[col_step]);
           }
-          if (!any_free) continue;
+          continue;
         }
-        for (int col_step = -w; col_step <= w; ++col_step) {
-          if (row_step == 0 && col_step == 0) continue;
-          int col = current.col + col_step;
-          col += col < 0 ? cols : (col >= cols ? -cols : 0);
-          try_join(a, row, col, factor[(row_step + w) * width + (col_step + w)]);
+        // Most of a window is labelled once a cluster grows: read its free flags 8 at a time
+        // and visit only the free cells.
+        const int first_col = current.col - w;
+        const uint8_t* window_row = &free_[row * cols + first_col];
+        for (int byte = 0; byte < width; byte += 8) {
+          uint64_t word;
+          std::memcpy(&word, window_row + byte, 8);
+          const int bytes = std::min(8, width - byte);
+          if (bytes < 8) word &= (1ull << (8 * bytes)) - 1;
+          while (word != 0) {
+            const int offset = byte + __builtin_ctzll(word) / 8;
+            word &= word - 1;  // each flag is 0 or 1: this clears that byte
+            try_join(a, row, first_col + offset, row_factor[offset - w]);
+          }
         }
       }
     }

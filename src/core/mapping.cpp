@@ -56,7 +56,8 @@ std::optional<LineMatch> line_near(const pcl::KdTreeFLANN<CloudPoint>& tree, con
     const Eigen::Vector3d d = map[index].getVector3fMap().cast<double>() - centroid;
     covariance += d * d.transpose();
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance / kNeighbours);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(covariance / kNeighbours);
   // A line: one dominant spread.
   if (solver.eigenvalues()(2) < 3.0 * solver.eigenvalues()(1)) return std::nullopt;
   const Eigen::Vector3d direction = solver.eigenvectors().col(2);
@@ -155,7 +156,15 @@ std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
 bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position,
                       int version) {
   std::vector<int> chosen = select(keyframes, position);
-  if (chosen == selected_ && version == version_) return false;
+  // Rebuilding (voxel filter and KD-trees) costs more than matching: only when keyframe poses
+  // changed or enough of the chosen keyframes are missing from the built map.
+  int missing = 0;
+  for (int index : chosen) {
+    missing += !std::binary_search(selected_.begin(), selected_.end(), index);
+  }
+  if (version == version_ && missing < std::max(1, params_.local_map_refresh_keyframes)) {
+    return false;
+  }
   selected_ = std::move(chosen);
   version_ = version;
   Cloud corners, surfaces;

@@ -234,6 +234,7 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.number("keyframe_angle_deg", m.keyframe_angle_deg, 0.0, 180.0);
   in.number("local_map_radius", m.local_map_radius, 1.0, 1000.0);
   in.number("local_map_keyframes", m.local_map_keyframes, 1, 10000);
+  in.number("local_map_refresh_keyframes", m.local_map_refresh_keyframes, 1, 10000);
   in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
   in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
   in.reject_unknown_keys();

@@ -120,6 +120,7 @@ struct MappingParams {
   double keyframe_angle_deg = 10.0;    // ... or this much rotation
   double local_map_radius = 50.0;      // m: keyframes within this distance form the local map
   int local_map_keyframes = 40;        // at most this many, nearest in time first
+  int local_map_refresh_keyframes = 3;  // rebuild when this many chosen ones are not in it yet
   double degeneracy_eigenvalue = 100;  // LOAM's threshold on the normal equations' eigenvalues
   // Weight of a prior pulling the translation along the ambient filter's weak direction toward
   // the odometry's prediction, times mu; 0 turns it off.
