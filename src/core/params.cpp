@@ -194,6 +194,11 @@ void read_ambient(SectionReader& in, AmbientFilterParams& a) {
   in.reject_unknown_keys();
 }
 
+void read_clustering_benchmark(SectionReader& in, ClusteringBenchmarkParams& b) {
+  in.number("min_cluster_points", b.min_cluster_points, 1, 1000000);
+  in.reject_unknown_keys();
+}
+
 }  // namespace
 
 void validate(const SensorParams& s, const std::string& source) {
@@ -250,10 +255,13 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
   read_segmentation(segmentation, config.segmentation);
   SectionReader ambient = section("ambient_filter");
   read_ambient(ambient, config.ambient);
+  SectionReader benchmark = section("clustering_benchmark");
+  read_clustering_benchmark(benchmark, config.clustering_benchmark);
 
   for (const auto& entry : root) {
     const std::string name = entry.first.as<std::string>();
-    static const std::set<std::string> known = {"sensor", "segmentation", "ambient_filter"};
+    static const std::set<std::string> known = {"sensor", "segmentation", "ambient_filter",
+                                                "clustering_benchmark"};
     if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
   }
   validate(config.sensor, source);

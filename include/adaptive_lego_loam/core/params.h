@@ -81,11 +81,19 @@ struct AmbientFilterParams {
   double mu_smoothing = 0.0;
 };
 
+// Settings of the clustering benchmark tool (segmentation_bench), the same for every method.
+struct ClusteringBenchmarkParams {
+  // Clusters with fewer points are not output. 1 counts every cluster: the benchmark's score
+  // (best IoU per labelled box) can only fall when clusters are left out.
+  int min_cluster_points = 1;
+};
+
 struct Config {
   std::string source;  // file the config came from, for messages
   SensorParams sensor;
   SegmentationParams segmentation;
   AmbientFilterParams ambient;
+  ClusteringBenchmarkParams clustering_benchmark;
 };
 
 // Loads and checks a config file. Throws ConfigError naming the file, the key and the allowed
