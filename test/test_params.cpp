@@ -127,3 +127,18 @@ TEST(Params, LoopClosureSection) {
                 .find("loop_closure.search_radus"),
             std::string::npos);
 }
+
+TEST(Params, ClusteringBenchmarkMinClusterPoints) {
+  const Config kitti = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  EXPECT_EQ(kitti.clustering_benchmark.min_cluster_points, 1);
+  const Config set = parse_config(
+      std::string(kMinimal) + "clustering_benchmark:\n  min_cluster_points: 30\n", "test.yaml");
+  EXPECT_EQ(set.clustering_benchmark.min_cluster_points, 30);
+  const std::string zero =
+      error_of(std::string(kMinimal) + "clustering_benchmark:\n  min_cluster_points: 0\n");
+  EXPECT_NE(zero.find("clustering_benchmark.min_cluster_points"), std::string::npos) << zero;
+  EXPECT_NE(zero.find("[1, 1000000]"), std::string::npos) << zero;
+  const std::string typo =
+      error_of(std::string(kMinimal) + "clustering_benchmark:\n  min_cluster_size: 5\n");
+  EXPECT_NE(typo.find("clustering_benchmark.min_cluster_size"), std::string::npos) << typo;
+}

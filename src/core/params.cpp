@@ -261,6 +261,11 @@ void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
   in.reject_unknown_keys();
 }
 
+void read_clustering_benchmark(SectionReader& in, ClusteringBenchmarkParams& b) {
+  in.number("min_cluster_points", b.min_cluster_points, 1, 1000000);
+  in.reject_unknown_keys();
+}
+
 }  // namespace
 
 void validate(const SensorParams& s, const std::string& source) {
@@ -325,12 +330,14 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
   read_mapping(mapping, config.mapping);
   SectionReader loop_closure = section("loop_closure");
   read_loop_closure(loop_closure, config.loop_closure);
+  SectionReader benchmark = section("clustering_benchmark");
+  read_clustering_benchmark(benchmark, config.clustering_benchmark);
 
   for (const auto& entry : root) {
     const std::string name = entry.first.as<std::string>();
-    static const std::set<std::string> known = {"sensor",   "segmentation", "ambient_filter",
-                                                "features", "odometry",     "mapping",
-                                                "loop_closure"};
+    static const std::set<std::string> known = {
+        "sensor",  "segmentation", "ambient_filter", "features",
+        "odometry", "mapping",     "loop_closure",   "clustering_benchmark"};
     if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
   }
   validate(config.sensor, source);

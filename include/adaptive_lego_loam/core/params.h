@@ -156,6 +156,13 @@ struct LoopClosureParams {
   double robust_loss_scale = 2.0;  // sigmas
 };
 
+// Settings of the clustering benchmark tool (segmentation_bench), the same for every method.
+struct ClusteringBenchmarkParams {
+  // Clusters with fewer points are not output. 1 counts every cluster: the benchmark's score
+  // (best IoU per labelled box) can only fall when clusters are left out.
+  int min_cluster_points = 1;
+};
+
 struct Config {
   std::string source;  // file the config came from, for messages
   SensorParams sensor;
@@ -165,6 +172,7 @@ struct Config {
   OdometryParams odometry;
   MappingParams mapping;
   LoopClosureParams loop_closure;
+  ClusteringBenchmarkParams clustering_benchmark;
 };
 
 // Loads and checks a config file. Throws ConfigError naming the file, the key and the allowed
