@@ -11,7 +11,8 @@ export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
 
 PACKAGES=(
   build-essential cmake catkin ros-base-dev ros-message-generation ros-message-runtime
-  libroscpp-dev libstd-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev
+  libroscpp-dev libroslib-dev libstd-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
+  libnav-msgs-dev libvisualization-msgs-dev libros-rosgraph-msgs-dev
   libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev librosbag-dev python3-rosbag
   python3-rostest librostest-dev python3-roslaunch python3-catkin-pkg libnodelet-dev
   libpcl-dev libpcl-conversions-dev libpcl-ros-dev libeigen3-dev libceres-dev libyaml-cpp-dev

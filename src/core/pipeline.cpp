@@ -3,11 +3,17 @@
 namespace adaptive_lego_loam {
 
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
-                                                       const AmbientFilterResult& filtered) {
-  if (params.weak_direction_prior <= 0.0 || !filtered.degeneration.valid) return std::nullopt;
-  const Eigen::Vector2d& weak = filtered.degeneration.weak_direction;
+                                                       const Degeneration& degeneration,
+                                                       double mu) {
+  if (params.weak_direction_prior <= 0.0 || !degeneration.valid) return std::nullopt;
+  const Eigen::Vector2d& weak = degeneration.weak_direction;
   return WeakDirectionPrior{Eigen::Vector3d(weak.x(), weak.y(), 0.0),
-                            params.weak_direction_prior * filtered.mu};
+                            params.weak_direction_prior * mu};
+}
+
+std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
+                                                       const AmbientFilterResult& filtered) {
+  return weak_direction_prior(params, filtered.degeneration, filtered.mu);
 }
 
 Pipeline::Pipeline(const Config& config)

@@ -25,17 +25,16 @@ class BagSequence : public ScanSequence {
   }
 
   std::optional<Scan> next() override {
-    while (position_ != view_->end()) {
-      const rosbag::MessageInstance& message = *position_;
-      ++position_;
-      const auto cloud = message.instantiate<sensor_msgs::PointCloud2>();
-      if (!cloud) {
-        throw IoError(path_ + ": topic " + topic_ + " holds " + message.getDataType() +
-                      ", expected sensor_msgs/PointCloud2");
-      }
-      return from_ros(*cloud, path_ + ":" + topic_);
+    if (position_ == view_->end()) return std::nullopt;
+    // The iterator owns the instance it points at: read it before moving on.
+    const rosbag::MessageInstance& message = *position_;
+    const auto cloud = message.instantiate<sensor_msgs::PointCloud2>();
+    if (!cloud) {
+      throw IoError(path_ + ": topic " + topic_ + " holds " + message.getDataType() +
+                    ", expected sensor_msgs/PointCloud2");
     }
-    return std::nullopt;
+    ++position_;
+    return from_ros(*cloud, path_ + ":" + topic_);
   }
   int size() const override { return static_cast<int>(view_->size()); }
   std::string describe() const override {

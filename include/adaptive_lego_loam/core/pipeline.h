@@ -33,6 +33,9 @@ struct FrameResult {
 // when mu is unknown).
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
                                                        const AmbientFilterResult& filtered);
+// The same from the filter's degeneration and its (smoothed) mu, e.g. as a message carries them.
+std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
+                                                       const Degeneration& degeneration, double mu);
 
 class Pipeline {
  public:

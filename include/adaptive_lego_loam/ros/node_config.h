@@ -1,0 +1,55 @@
+#pragma once
+// What every node reads from its private namespace at start-up: the sensor config (~config, a
+// YAML path; else ~sensor, the name of one of the package's config/*.yaml), the frame names,
+// and the shared start-up of main().
+
+#include <ros/ros.h>
+
+#include <exception>
+#include <memory>
+#include <string>
+
+#include "adaptive_lego_loam/core/params.h"
+
+namespace adaptive_lego_loam::ros_bridge {
+
+// The package's config directory: from roslib when the package is on ROS_PACKAGE_PATH, else
+// the source tree's config/ this library was built from.
+std::string package_config_dir();
+
+// ~config when set and not empty, else <config dir>/<~sensor>.yaml (~sensor defaults to vlp16).
+// Throws ConfigError naming the parameter and the known sensors when there is no such file.
+std::string config_path(const ros::NodeHandle& private_nh);
+
+// load_config(config_path(private_nh)): throws ConfigError naming the file, key and range.
+Config load_node_config(const ros::NodeHandle& private_nh);
+
+struct FrameNames {
+  std::string map = "map";
+  std::string odom = "odom";
+  std::string base;  // empty: the sensor frame is the robot's base (no base_link -> sensor TF)
+  std::string sensor = "velodyne";  // used only for clouds whose header has no frame_id
+};
+// ~map_frame, ~odom_frame, ~base_frame, ~sensor_frame.
+FrameNames load_frame_names(const ros::NodeHandle& private_nh);
+
+// main() of every node: ros::init, the node object built from the config, ros::spin. A bad
+// config or any other start-up error stops the node with exit status 1 and a FATAL line that
+// holds the loader's message.
+template <class Node>
+int run_node(int argc, char** argv, const std::string& name) {
+  ros::init(argc, argv, name);
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  std::unique_ptr<Node> node;
+  try {
+    node = std::make_unique<Node>(nh, private_nh, load_node_config(private_nh));
+  } catch (const std::exception& e) {
+    ROS_FATAL("%s: %s", ros::this_node::getName().c_str(), e.what());
+    return 1;
+  }
+  ros::spin();
+  return 0;
+}
+
+}  // namespace adaptive_lego_loam::ros_bridge

@@ -1,0 +1,63 @@
+#pragma once
+// What the nodes log besides errors: a throttle for repeated warnings and the periodic one-line
+// summary of frames per second and milliseconds per stage. Both run on the steady clock, not on
+// ROS time: under use_sim_time the clock may stand still (or start at 0) while scans arrive,
+// and rosconsole's *_THROTTLE macros then stay silent.
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "adaptive_lego_loam/core/timing.h"
+
+namespace adaptive_lego_loam::ros_bridge {
+
+// Seconds on the steady clock.
+double steady_seconds();
+
+class Throttle {
+ public:
+  explicit Throttle(double period_s) : period_s_(period_s) {}
+  // True on the first call and then at most once per period.
+  bool ready() { return ready(steady_seconds()); }
+  bool ready(double now_s);
+  // " (N more since the last report)" after ready() returned true with N > 0 refused calls
+  // before it; empty otherwise.
+  std::string suppressed_note() const;
+
+ private:
+  double period_s_;
+  std::optional<double> last_s_;
+  int refused_ = 0;
+  int refused_before_last_ = 0;
+};
+
+class StageSummary {
+ public:
+  // `label` starts the line (the node's name).
+  StageSummary(std::string label, double period_s)
+      : label_(std::move(label)), period_s_(period_s) {}
+  // One processed frame and its stage times.
+  void add(const StageTimes& times) { add(times, steady_seconds()); }
+  void add(const StageTimes& times, double now_s);
+  // When a period has passed since the last report (or the first frame): one line, e.g.
+  // "image_projection: 9.8 frames/s over 98 frames; ms per frame: projection 3.1, ground 0.4,
+  // total 7.9", and a new period starts. Nothing otherwise.
+  std::optional<std::string> report() { return report(steady_seconds()); }
+  std::optional<std::string> report(double now_s);
+
+ private:
+  std::string label_;
+  double period_s_;
+  std::optional<double> start_s_;
+  int frames_ = 0;
+  std::vector<std::pair<std::string, double>> total_ms_;  // per stage, in first-seen order
+  double all_ms_ = 0.0;
+};
+
+// One line of a frame's stage times for the debug log: "projection 3.12 ms, ground 0.40 ms".
+std::string format_stage_times(const StageTimes& times);
+
+}  // namespace adaptive_lego_loam::ros_bridge

@@ -1,0 +1,34 @@
+#pragma once
+// Poses as ROS messages: nav_msgs/Odometry, TF transforms, nav_msgs/Path. A pose is the child
+// frame's pose in the parent frame (x_parent = pose * x_child), as everywhere in the core.
+
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <nav_msgs/Path.h>
+#include <ros/time.h>
+#include <std_msgs/Header.h>
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace adaptive_lego_loam::ros_bridge {
+
+// `header.frame_id` is the parent frame; the twist stays zero.
+nav_msgs::Odometry odometry_to_ros(const Eigen::Isometry3d& pose, const std_msgs::Header& header,
+                                   const std::string& child_frame);
+
+// Throws IoError naming `source` on a non-finite number or a zero quaternion; the quaternion is
+// normalised.
+Eigen::Isometry3d pose_from_ros(const geometry_msgs::Pose& pose, const std::string& source);
+
+geometry_msgs::TransformStamped transform_to_ros(const Eigen::Isometry3d& pose,
+                                                 const std_msgs::Header& header,
+                                                 const std::string& child_frame);
+
+// Throws std::invalid_argument when poses and stamps differ in length.
+nav_msgs::Path path_to_ros(const std::vector<Eigen::Isometry3d>& poses,
+                           const std::vector<ros::Time>& stamps, const std::string& frame);
+
+}  // namespace adaptive_lego_loam::ros_bridge

@@ -1,0 +1,100 @@
+#include "adaptive_lego_loam/ros/degeneration_conversions.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "adaptive_lego_loam/core/pipeline.h"
+
+namespace adaptive_lego_loam::ros_bridge {
+namespace {
+
+constexpr double kArrowMinLength = 2.0;  // m, at mu = 0
+constexpr double kArrowMuLength = 10.0;  // m added at mu = 1
+constexpr double kTextHeight = 3.0;      // m above the sensor
+
+visualization_msgs::Marker weak_direction_arrow(const DegenerationState& msg) {
+  visualization_msgs::Marker arrow;
+  arrow.header = msg.header;
+  arrow.ns = "weak_direction";
+  arrow.id = 0;
+  arrow.type = visualization_msgs::Marker::ARROW;
+  if (!msg.valid) {
+    arrow.action = visualization_msgs::Marker::DELETE;
+    return arrow;
+  }
+  arrow.action = visualization_msgs::Marker::ADD;
+  arrow.pose.orientation.w = 1.0;
+  const double mu = std::clamp(msg.mu, 0.0, 1.0);
+  const double length = kArrowMinLength + kArrowMuLength * mu;
+  geometry_msgs::Point tail, head;
+  head.x = length * msg.weak_direction.x;
+  head.y = length * msg.weak_direction.y;
+  head.z = length * msg.weak_direction.z;
+  arrow.points = {tail, head};
+  arrow.scale.x = 0.5;  // shaft diameter
+  arrow.scale.y = 1.0;  // head diameter
+  arrow.scale.z = 1.5;  // head length
+  arrow.color.r = static_cast<float>(mu);
+  arrow.color.g = static_cast<float>(1.0 - mu);
+  arrow.color.b = 0.1f;
+  arrow.color.a = 1.0f;
+  return arrow;
+}
+
+visualization_msgs::Marker mu_text(const DegenerationState& msg) {
+  visualization_msgs::Marker text;
+  text.header = msg.header;
+  text.ns = "degeneration";
+  text.id = 1;
+  text.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+  text.action = visualization_msgs::Marker::ADD;
+  text.pose.orientation.w = 1.0;
+  text.pose.position.z = kTextHeight;
+  text.scale.z = 2.0;  // letter height, m
+  text.color.r = text.color.g = text.color.b = text.color.a = 1.0f;
+  char line[96];
+  if (msg.valid) {
+    std::snprintf(line, sizeof(line), "mu %.2f  beta0 %.1f deg", msg.mu, msg.beta0_deg);
+  } else {
+    std::snprintf(line, sizeof(line), "mu unknown  beta0 %.1f deg", msg.beta0_deg);
+  }
+  text.text = line;
+  return text;
+}
+
+}  // namespace
+
+DegenerationState degeneration_to_ros(const AmbientFilterResult& filtered,
+                                      const std_msgs::Header& header) {
+  DegenerationState msg;
+  msg.header = header;
+  const Degeneration& degeneration = filtered.degeneration;
+  msg.valid = degeneration.valid;
+  msg.mu = filtered.mu;
+  msg.mu_raw = degeneration.mu;
+  msg.beta0_deg = static_cast<float>(filtered.beta0_deg);
+  msg.weak_direction.x = degeneration.weak_direction.x();
+  msg.weak_direction.y = degeneration.weak_direction.y();
+  msg.weak_direction.z = 0.0;
+  msg.skeleton_points = static_cast<uint32_t>(std::max(filtered.skeleton_points, 0));
+  msg.normals = static_cast<uint32_t>(std::max(degeneration.normals, 0));
+  return msg;
+}
+
+std::optional<WeakDirectionPrior> weak_direction_prior_from_ros(const MappingParams& params,
+                                                                const DegenerationState& msg) {
+  Degeneration degeneration;
+  degeneration.valid = msg.valid;
+  degeneration.mu = msg.mu_raw;
+  degeneration.weak_direction = Eigen::Vector2d(msg.weak_direction.x, msg.weak_direction.y);
+  degeneration.normals = static_cast<int>(msg.normals);
+  return weak_direction_prior(params, degeneration, msg.mu);
+}
+
+visualization_msgs::MarkerArray degeneration_markers(const DegenerationState& msg) {
+  visualization_msgs::MarkerArray markers;
+  markers.markers = {weak_direction_arrow(msg), mu_text(msg)};
+  return markers;
+}
+
+}  // namespace adaptive_lego_loam::ros_bridge

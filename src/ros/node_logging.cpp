@@ -1,0 +1,72 @@
+#include "adaptive_lego_loam/ros/node_logging.h"
+
+#include <cstdio>
+
+namespace adaptive_lego_loam::ros_bridge {
+
+double steady_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+bool Throttle::ready(double now_s) {
+  if (last_s_ && now_s - *last_s_ < period_s_) {
+    ++refused_;
+    return false;
+  }
+  last_s_ = now_s;
+  refused_before_last_ = refused_;
+  refused_ = 0;
+  return true;
+}
+
+std::string Throttle::suppressed_note() const {
+  if (refused_before_last_ == 0) return "";
+  return " (" + std::to_string(refused_before_last_) + " more since the last report)";
+}
+
+void StageSummary::add(const StageTimes& times, double now_s) {
+  if (!start_s_) start_s_ = now_s;
+  ++frames_;
+  for (const auto& [stage, ms] : times.entries()) {
+    auto it = total_ms_.begin();
+    while (it != total_ms_.end() && it->first != stage)
+      ++it;
+    if (it == total_ms_.end()) {
+      total_ms_.emplace_back(stage, ms);
+    } else {
+      it->second += ms;
+    }
+  }
+  all_ms_ += times.total();
+}
+
+std::optional<std::string> StageSummary::report(double now_s) {
+  if (!start_s_ || frames_ == 0 || now_s - *start_s_ < period_s_) return std::nullopt;
+  char number[64];
+  std::snprintf(number, sizeof(number), "%.1f", frames_ / (now_s - *start_s_));
+  std::string line = label_ + ": " + number + " frames/s over " + std::to_string(frames_) +
+                     " frames; ms per frame:";
+  for (const auto& [stage, ms] : total_ms_) {
+    std::snprintf(number, sizeof(number), " %.1f", ms / frames_);
+    line += " " + stage + number + ",";
+  }
+  std::snprintf(number, sizeof(number), " %.1f", all_ms_ / frames_);
+  line += std::string(" total") + number;
+  start_s_ = now_s;
+  frames_ = 0;
+  total_ms_.clear();
+  all_ms_ = 0.0;
+  return line;
+}
+
+std::string format_stage_times(const StageTimes& times) {
+  std::string line;
+  char number[32];
+  for (const auto& [stage, ms] : times.entries()) {
+    std::snprintf(number, sizeof(number), " %.2f ms", ms);
+    line += (line.empty() ? "" : ", ") + stage + number;
+  }
+  return line;
+}
+
+}  // namespace adaptive_lego_loam::ros_bridge

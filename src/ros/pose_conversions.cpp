@@ -1,0 +1,63 @@
+#include "adaptive_lego_loam/ros/pose_conversions.h"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "adaptive_lego_loam/io/io_error.h"
+
+namespace adaptive_lego_loam::ros_bridge {
+
+nav_msgs::Odometry odometry_to_ros(const Eigen::Isometry3d& pose, const std_msgs::Header& header,
+                                   const std::string& child_frame) {
+  nav_msgs::Odometry msg;
+  msg.header = header;
+  msg.child_frame_id = child_frame;
+  msg.pose.pose = tf2::toMsg(pose);
+  return msg;
+}
+
+Eigen::Isometry3d pose_from_ros(const geometry_msgs::Pose& pose, const std::string& source) {
+  const geometry_msgs::Point& t = pose.position;
+  const geometry_msgs::Quaternion& q = pose.orientation;
+  for (double value : {t.x, t.y, t.z, q.x, q.y, q.z, q.w}) {
+    if (!std::isfinite(value)) throw IoError(source + ": pose holds a non-finite number");
+  }
+  Eigen::Quaterniond rotation(q.w, q.x, q.y, q.z);
+  if (rotation.norm() < 1e-9) throw IoError(source + ": pose has a zero quaternion");
+  rotation.normalize();
+  Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
+  result.linear() = rotation.toRotationMatrix();
+  result.translation() = Eigen::Vector3d(t.x, t.y, t.z);
+  return result;
+}
+
+geometry_msgs::TransformStamped transform_to_ros(const Eigen::Isometry3d& pose,
+                                                 const std_msgs::Header& header,
+                                                 const std::string& child_frame) {
+  geometry_msgs::TransformStamped msg = tf2::eigenToTransform(pose);
+  msg.header = header;
+  msg.child_frame_id = child_frame;
+  return msg;
+}
+
+nav_msgs::Path path_to_ros(const std::vector<Eigen::Isometry3d>& poses,
+                           const std::vector<ros::Time>& stamps, const std::string& frame) {
+  if (poses.size() != stamps.size()) {
+    throw std::invalid_argument("path_to_ros: " + std::to_string(poses.size()) + " poses but " +
+                                std::to_string(stamps.size()) + " stamps");
+  }
+  nav_msgs::Path path;
+  path.header.frame_id = frame;
+  if (!stamps.empty()) path.header.stamp = stamps.back();
+  path.poses.resize(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    path.poses[i].header.frame_id = frame;
+    path.poses[i].header.stamp = stamps[i];
+    path.poses[i].pose = tf2::toMsg(poses[i]);
+  }
+  return path;
+}
+
+}  // namespace adaptive_lego_loam::ros_bridge
