@@ -34,7 +34,7 @@ class MapOptimization {
  public:
   MapOptimization(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config)
       : params_(config.mapping),
-        mapping_(config.mapping),
+        mapping_(config.mapping, config.loop_closure),
         uses_prior_(config.mapping.weak_direction_prior > 0.0),
         frames_(ros_bridge::load_frame_names(private_nh)),
         matcher_(slot_names(uses_prior_), private_nh.param("max_pending_scans", 10)),
