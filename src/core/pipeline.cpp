@@ -47,6 +47,7 @@ const FrameResult& Pipeline::process(const Scan& scan) {
   result_.mapping = mapping_out_.match;
   result_.pose = mapping_out_.pose;
   result_.keyframe = mapping_out_.keyframe;
+  result_.loop = mapping_out_.loop;
   result_.loop_closed = mapping_out_.loop && mapping_out_.loop->accepted();
   return result_;
 }
