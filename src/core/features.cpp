@@ -26,6 +26,7 @@ void FeatureSet::clear() {
   for (CloudPtr* cloud : {&sharp, &less_sharp, &flat, &less_flat, &outliers}) {
     cloud->reset(new Cloud);
   }
+  raw_sweep = false;
 }
 
 FeatureExtractor::FeatureExtractor(const FeatureParams& params) : params_(params) {}
@@ -142,7 +143,7 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
 }
 
 void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,
-                               FeatureSet& out) {
+                               const std::vector<ScanPoint>& outliers, FeatureSet& out) {
   out.clear();
   compute_smoothness(cloud);
   mark_unreliable(cloud);

@@ -89,7 +89,8 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   pose_ = pose;
   fusion_.update_mapping(odometry_pose, pose_);
   out.pose = pose_;
-  out.keyframe = needs_keyframe();
+  // A distorted first sweep would bend the map for as long as it stays in it.
+  out.keyframe = !features.raw_sweep && needs_keyframe();
   out.loop.reset();
   if (out.keyframe) {
     add_keyframe(features, stamp);
@@ -99,8 +100,12 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
     out.pose = pose_;
     fusion_.update_mapping(odometry_pose, pose_);
   }
-  const Keyframe& anchor = keyframes_.back();
-  anchors_.emplace_back(anchor.index, anchor.pose.inverse() * pose_);
+  if (keyframes_.empty()) {
+    anchors_.emplace_back(-1, pose_);  // no keyframe yet: the pose itself
+  } else {
+    const Keyframe& anchor = keyframes_.back();
+    anchors_.emplace_back(anchor.index, anchor.pose.inverse() * pose_);
+  }
   ++scans_;
   out.times.add("keyframes", watch.lap_ms());
 }
@@ -109,7 +114,7 @@ std::vector<Eigen::Isometry3d> LidarMapping::trajectory() const {
   std::vector<Eigen::Isometry3d> poses;
   poses.reserve(anchors_.size());
   for (const auto& [keyframe, relative] : anchors_) {
-    poses.push_back(keyframes_[keyframe].pose * relative);
+    poses.push_back(keyframe < 0 ? relative : keyframes_[keyframe].pose * relative);
   }
   return poses;
 }

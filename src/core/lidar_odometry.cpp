@@ -12,16 +12,21 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
   Stopwatch watch;
   out.times.clear();
   points_ = cloud.points;
+  outliers_ = cloud.outliers;
   out.deskewed_by_time_field = false;
   if (!sensor_.deskewed && !first_) {
     // Constant velocity: the sweep moved as much as the last scan-to-scan motion. CloudInfo's
     // orientation is LeGO-LOAM's clockwise angle, the negated azimuth.
-    out.deskewed_by_time_field = sweep_fractions(points_, has_time, -cloud.info.start_orientation,
-                                                 sensor_.scan_period, fractions_);
-    deskew_to_sweep_end(last_motion_, fractions_, points_);
+    const double start_azimuth = -cloud.info.start_orientation;
+    for (std::vector<ScanPoint>* points : {&points_, &outliers_}) {
+      out.deskewed_by_time_field = sweep_fractions(*points, has_time, start_azimuth,
+                                                   sensor_.scan_period, fractions_);
+      deskew_to_sweep_end(last_motion_, fractions_, *points);
+    }
   }
   out.times.add("deskew", watch.lap_ms());
-  extractor_.extract(cloud, points_, out.features);
+  extractor_.extract(cloud, points_, outliers_, out.features);
+  out.features.raw_sweep = !sensor_.deskewed && first_;
   out.times.add("features", watch.lap_ms());
 
   const Eigen::Isometry3d prediction =

@@ -20,7 +20,7 @@ struct ScanToScanOdometry::Matches {
 
 namespace {
 
-constexpr int kCandidates = 5;
+constexpr int kCandidates = 15;
 
 Eigen::Vector3d position(const CloudPoint& p) {
   return p.getVector3fMap().cast<double>();
@@ -54,6 +54,7 @@ ScanToScanOdometry::ScanToScanOdometry(const OdometryParams& params) : params_(p
 
 void ScanToScanOdometry::reset() {
   previous_corners_.reset();
+  first_pair_ = true;
   previous_surfaces_.reset();
 }
 
@@ -152,7 +153,10 @@ OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
     double pose[6];
     pose_to_euler_vector(guess, pose);
     Matches matches;
-    for (int iteration = 0; iteration < params_.max_iterations; ++iteration) {
+    // The first pair starts from no motion at all, possibly far from the truth: more searches.
+    const int iterations = first_pair_ ? 4 * params_.max_iterations : params_.max_iterations;
+    first_pair_ = false;
+    for (int iteration = 0; iteration < iterations; ++iteration) {
       const Eigen::Isometry3d before = euler_vector_to_pose(pose);
       find_edge_matches(*current.sharp, pose, matches);
       find_plane_matches(*current.flat, pose, matches);

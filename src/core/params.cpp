@@ -218,6 +218,7 @@ void read_odometry(SectionReader& in, OdometryParams& o) {
   in.number("max_match_distance", o.max_match_distance, 0.1, 100.0);
   in.number("huber_loss", o.huber_loss, 0.001, 100.0);
   in.boolean("constant_velocity", o.constant_velocity);
+  in.boolean("motion_from_mapping", o.motion_from_mapping);
   in.reject_unknown_keys();
 }
 

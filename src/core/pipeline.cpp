@@ -41,8 +41,12 @@ const FrameResult& Pipeline::process(const Scan& scan) {
   result_.flat = static_cast<int>(features.flat->size());
   result_.less_flat = static_cast<int>(features.less_flat->size());
 
+  const Eigen::Isometry3d previous_pose = mapping_out_.pose;
   mapping_.process(features, odometry_out_.pose, scan.stamp,
                    weak_direction_prior(config_.mapping, filtered_), mapping_out_);
+  if (config_.odometry.motion_from_mapping && config_.mapping.enabled && result_.frame > 0) {
+    odometry_.use_mapped_motion(previous_pose.inverse() * mapping_out_.pose);
+  }
   result_.times.append(mapping_out_.times);
   result_.mapping = mapping_out_.match;
   result_.pose = mapping_out_.pose;

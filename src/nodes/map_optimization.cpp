@@ -36,6 +36,7 @@ class MapOptimization {
       : params_(config.mapping),
         mapping_(config.mapping, config.loop_closure),
         uses_prior_(config.mapping.weak_direction_prior > 0.0),
+        first_sweep_raw_(!config.sensor.deskewed),
         frames_(ros_bridge::load_frame_names(private_nh)),
         matcher_(slot_names(uses_prior_), private_nh.param("max_pending_scans", 10)),
         surround_throttle_(private_nh.param("surround_period", 1.0)),
@@ -90,11 +91,13 @@ class MapOptimization {
   void process(const ros_bridge::StampMatcher::Group& group) {
     const auto odometry = group.get<nav_msgs::Odometry>(kOdometry);
     try {
-      const FeatureSet features = ros_bridge::mapping_features_from_ros(
+      FeatureSet features = ros_bridge::mapping_features_from_ros(
           *group.get<sensor_msgs::PointCloud2>(kCorners),
           *group.get<sensor_msgs::PointCloud2>(kSurfaces),
           *group.get<sensor_msgs::PointCloud2>(kOutliers),
           {topic(kCorners), topic(kSurfaces), topic(kOutliers)});
+      // As LidarOdometry marks it offline: the first sweep of a sensor that needs de-skewing.
+      features.raw_sweep = first_sweep_raw_ && stamps_.empty();
       const Eigen::Isometry3d odometry_pose =
           ros_bridge::pose_from_ros(odometry->pose.pose, topic(kOdometry));
       std::optional<WeakDirectionPrior> prior;
@@ -145,6 +148,7 @@ class MapOptimization {
   LidarMapping mapping_;
   MappingOutput out_;
   bool uses_prior_;
+  bool first_sweep_raw_;
   ros_bridge::FrameNames frames_;
   std::string sensor_frame_;
   std::vector<ros::Time> stamps_;  // of every mapped scan, for the path

@@ -19,6 +19,9 @@ struct FeatureSet {
   CloudPtr flat{new Cloud};
   CloudPtr less_flat{new Cloud};  // includes the flat ones, voxel-filtered per row
   CloudPtr outliers{new Cloud};   // LeGO-LOAM's outlier cloud: dropped clusters, for mapping
+  // A sweep that needed de-skewing but could not have it (the first, before any motion is
+  // known): usable for odometry, kept out of the map.
+  bool raw_sweep = false;
 
   // Replaces every cloud by a new empty one (holders of the old ones keep them intact).
   void clear();
@@ -27,8 +30,10 @@ struct FeatureSet {
 class FeatureExtractor {
  public:
   explicit FeatureExtractor(const FeatureParams& params);
-  // `points` are the segmented cloud's points (possibly de-skewed), in its order.
-  void extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points, FeatureSet& out);
+  // `points` and `outliers` are the segmented cloud's points and outliers, possibly de-skewed,
+  // in its order.
+  void extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,
+               const std::vector<ScanPoint>& outliers, FeatureSet& out);
 
  private:
   void compute_smoothness(const SegmentedCloud& cloud);

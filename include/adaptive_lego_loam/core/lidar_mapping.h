@@ -71,7 +71,8 @@ class LidarMapping {
   int scans_ = 0;
   std::optional<Eigen::Isometry3d> last_odometry_pose_;
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
-  // Per scan: the keyframe it hangs from and its pose relative to that keyframe.
+  // Per scan: the keyframe it hangs from and its pose relative to that keyframe (-1 and the pose
+  // itself before the first keyframe).
   std::vector<std::pair<int, Eigen::Isometry3d>> anchors_;
 };
 

@@ -28,13 +28,17 @@ class LidarOdometry {
                 const OdometryParams& odometry);
   // `has_time`: whether the cloud's points carry their time in the sweep.
   void process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out);
+  // The last scan's motion as mapping refined it (the previous scan's pose to the last one's in
+  // the map): replaces the odometry's own estimate as the constant-velocity model that de-skews
+  // and predicts the next scan. Mapping's is far better on 16-beam sensors.
+  void use_mapped_motion(const Eigen::Isometry3d& motion) { last_motion_ = motion; }
 
  private:
   SensorParams sensor_;
   OdometryParams params_;
   FeatureExtractor extractor_;
   ScanToScanOdometry registration_;
-  std::vector<ScanPoint> points_;
+  std::vector<ScanPoint> points_, outliers_;
   std::vector<float> fractions_;
   bool first_ = true;
   Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();

@@ -38,6 +38,7 @@ class ScanToScanOdometry {
              const std::vector<int>& fixed_entries, double* pose) const;
 
   OdometryParams params_;
+  bool first_pair_ = true;
   CloudPtr previous_corners_, previous_surfaces_;
   pcl::KdTreeFLANN<CloudPoint> corner_tree_, surface_tree_;
 };

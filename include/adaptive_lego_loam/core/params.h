@@ -104,6 +104,8 @@ struct OdometryParams {
   double max_match_distance = 5.0;  // m
   double huber_loss = 0.1;          // m
   bool constant_velocity = true;    // initial guess from the previous motion
+  // De-skew and predict with the previous motion as mapping refined it, when mapping runs.
+  bool motion_from_mapping = true;
 };
 
 // Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).
