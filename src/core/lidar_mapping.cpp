@@ -25,9 +25,12 @@ LidarMapping::LidarMapping(const MappingParams& params, const LoopClosureParams&
       matcher_(params) {}
 
 void LidarMapping::try_loop_closure(double stamp, MappingOutput& out) {
-  if (!loop_params_.enabled || stamp - last_loop_attempt_ < kLoopAttemptPeriod) return;
-  last_loop_attempt_ = stamp;
+  if (!loop_params_.enabled) return;
   const int newest = static_cast<int>(keyframes_.size()) - 1;
+  // The candidate search is cheap and runs at every keyframe; ICP at most once a period.
+  if (find_loop_candidate(keyframes_, newest, loop_params_) < 0) return;
+  if (stamp - last_loop_attempt_ < kLoopAttemptPeriod) return;
+  last_loop_attempt_ = stamp;
   out.loop = detect_loop(keyframes_, newest, loop_params_);
   if (!out.loop->accepted()) return;
   const Eigen::Isometry3d newest_before = keyframes_[newest].pose;

@@ -54,8 +54,8 @@ class LidarMapping {
  private:
   bool needs_keyframe() const;
   void add_keyframe(const FeatureSet& features, double stamp);
-  // LeGO-LOAM tries once a second of data: with a new keyframe, at most every
-  // kLoopAttemptPeriod seconds.
+  // With a new keyframe that has a loop candidate, ICP at most once a second of data (LeGO-LOAM's
+  // rate).
   void try_loop_closure(double stamp, MappingOutput& out);
 
   MappingParams params_;
