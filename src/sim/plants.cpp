@@ -89,7 +89,7 @@ PlantShape random_tree_shape(Rng& rng) {
   shape.tree = true;
   shape.crown_radius = static_cast<float>(rng.uniform(1.8, 3.2));
   shape.crown_height = static_cast<float>(rng.uniform(3.0, 6.0));
-  shape.crown_base = static_cast<float>(rng.uniform(2.6, 3.6));
+  shape.crown_base = static_cast<float>(rng.uniform(2.2, 3.6));
   shape.trunk_radius = static_cast<float>(rng.uniform(0.12, 0.3));
   shape.extinction = 0.7f;
   shape.max_facets = 2500;

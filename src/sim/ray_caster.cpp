@@ -65,11 +65,12 @@ struct RayCaster::Impl {
     }
   }
 
-  SubScene build(const GeometrySet& set, RTCBuildQuality quality) {
+  // `watertight`: no ray slips between triangles sharing an edge (ground, walls); slower.
+  SubScene build(const GeometrySet& set, RTCBuildQuality quality, bool watertight = false) {
     SubScene sub;
     sub.geometry = &set;
     sub.scene = rtcNewScene(device);
-    rtcSetSceneFlags(sub.scene, RTC_SCENE_FLAG_ROBUST);
+    if (watertight) rtcSetSceneFlags(sub.scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(sub.scene, quality);
     if (!set.triangles.empty()) sub.triangle_geometry = attach_triangles(sub.scene, set);
     if (!set.cylinders.empty()) sub.cylinder_geometry = attach_cylinders(sub.scene, set);
@@ -156,7 +157,8 @@ struct RayCaster::Impl {
         continue;
       }
       if (built == tile_scenes.end()) {
-        built = tile_scenes.emplace(key, build(world->tiles.at(key), RTC_BUILD_QUALITY_HIGH)).first;
+        built = tile_scenes.emplace(key, build(world->tiles.at(key), RTC_BUILD_QUALITY_HIGH, true))
+                    .first;
       }
       add_instance(built->second, Eigen::Affine3f::Identity(), 0);
     }
@@ -187,10 +189,17 @@ struct RayCaster::Impl {
           transform.rotate(Eigen::AngleAxisf(sway, Eigen::Vector3f::UnitY()));
           transform.rotate(Eigen::AngleAxisf(plant.yaw, Eigen::Vector3f::UnitZ()));
           transform.scale(plant.scale);
-          add_instance(plant_scenes[plant.prototype][state], transform, plant.instance);
+          add_instance(plant_scene(plant.prototype, state), transform, plant.instance);
         }
       }
     }
+  }
+
+  const SubScene& plant_scene(int prototype, int state) {
+    SubScene& sub = plant_scenes[prototype][state];
+    if (!sub.scene)
+      sub = build(world->plant_prototypes[prototype].wind_states[state], RTC_BUILD_QUALITY_HIGH);
+    return sub;
   }
 
   // Pose of a path-following object at `time`, or false when it is off the path or out of reach.
@@ -264,9 +273,8 @@ RayCaster::RayCaster(std::shared_ptr<const World> world, float reach) : impl_(ne
     if (!tile.empty()) d.tile_bounds[key] = tile.bounds();
   }
   for (const PlantPrototype& prototype : d.world->plant_prototypes) {
-    d.plant_scenes.emplace_back();
-    for (const GeometrySet& state : prototype.wind_states)
-      d.plant_scenes.back().push_back(d.build(state, RTC_BUILD_QUALITY_HIGH));
+    // Built when first needed: a scene may use few of them, or none.
+    d.plant_scenes.emplace_back(prototype.wind_states.size());
   }
   for (const GeometrySet& car : d.world->car_prototypes)
     d.car_scenes.push_back(d.build(car, RTC_BUILD_QUALITY_HIGH));
@@ -280,8 +288,9 @@ RayCaster::~RayCaster() {
   for (auto& [key, sub] : d.tile_scenes)
     rtcReleaseScene(sub.scene);
   for (auto& states : d.plant_scenes) {
-    for (SubScene& sub : states)
-      rtcReleaseScene(sub.scene);
+    for (SubScene& sub : states) {
+      if (sub.scene) rtcReleaseScene(sub.scene);
+    }
   }
   for (SubScene& sub : d.car_scenes)
     rtcReleaseScene(sub.scene);

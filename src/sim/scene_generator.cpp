@@ -77,6 +77,12 @@ std::vector<PathPiece> open_pieces(ScenarioKind kind, double length, double lead
       }
       break;
   }
+  // Only as long as needed: terrain and objects are built along all of it.
+  while (total - pieces.back().length >= length) {
+    total -= pieces.back().length;
+    pieces.pop_back();
+  }
+  pieces.back().length -= total - length;
   return pieces;
 }
 
@@ -349,6 +355,16 @@ void add_street_trees(Layout& l, double side) {
   }
 }
 
+// Bushes and hedges in the strip between the sidewalk and the buildings.
+void add_front_gardens(Layout& l, double side) {
+  if (l.p.bushes_per_100m <= 0.0 || l.p.sidewalk_width <= 0.0) return;
+  const double clearance = l.p.road_half_width + l.p.sidewalk_width + 0.3;
+  for (double s = l.rng.uniform(0.0, 10.0); s < l.length(); s += l.step(l.p.bushes_per_100m)) {
+    const Eigen::Vector2d xy = l.beside(s, side * (clearance + l.rng.uniform(0.3, 2.5)));
+    l.add_plant(l.bush_prototypes, xy, 0.5, clearance);
+  }
+}
+
 void add_standing_people(Layout& l, double side) {
   if (l.p.standing_people_per_100m <= 0.0) return;
   for (double s = l.rng.uniform(0.0, 50.0); s < l.length();
@@ -488,6 +504,7 @@ void layout_urban(Layout& l) {
     add_street_trees(l, side);
     add_standing_people(l, side);
     add_buildings(l, side);
+    add_front_gardens(l, side);
   }
 }
 

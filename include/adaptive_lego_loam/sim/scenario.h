@@ -38,9 +38,9 @@ struct ScenarioParams {
   // Objects.
   bool buildings = true;
   double trees_per_100m = 6.0;
-  double bushes_per_100m = 4.0;
+  double bushes_per_100m = 12.0;
   double poles_per_100m = 3.0;
-  double parked_car_share = 0.5;  // of parking slots taken (urban)
+  double parked_car_share = 0.4;  // of parking slots taken (urban)
   double moving_cars_per_km_lane = 10.0;
   double walkers_per_100m = 3.0;
   double standing_people_per_100m = 1.0;
