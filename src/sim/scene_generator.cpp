@@ -613,75 +613,68 @@ void check_request(const SceneRequest& r) {
   }
 }
 
-}  // namespace
-
-GeneratedScene generate_scene(const SceneRequest& request) {
-  check_request(request);
-  const ScenarioParams& p = request.scenario;
-  const uint64_t seed = request.seed;
+// The path and the trajectory along a recorded trajectory. Returns the ego vehicle's start on
+// the path.
+double drive_recorded(const SceneRequest& request, const Shake& shake, GeneratedScene& scene) {
+  const std::size_t count =
+      std::min<std::size_t>(request.frames + 1, request.trajectory_poses.size());
+  const std::vector<Eigen::Isometry3d> poses(request.trajectory_poses.begin(),
+                                             request.trajectory_poses.begin() + count);
+  const std::vector<double> times(request.trajectory_times.begin(),
+                                  request.trajectory_times.begin() + count);
   const double lead = lead_length(request);
-  const bool recorded = !request.trajectory_poses.empty();
+  scene.path = recorded_path(poses, request.sensor_height, request.scenario.ego_lateral, lead);
+  scene.trajectory = std::make_shared<SampledTrajectory>(times, poses, shake);
+  for (std::size_t i = 1; i < poses.size(); ++i)
+    scene.drive_length_m += (poses[i].translation() - poses[i - 1].translation()).norm();
+  return lead;
+}
 
-  Rng hill_rng(derive_seed(seed, kHillStream));
-  HeightField hills =
-      recorded ? HeightField() : HeightField(hill_rng, p.hill_amplitude_m, p.hill_wavelength_m, 3);
-  HeightField relief(hill_rng, p.relief_amplitude_m, p.relief_wavelength_m, 4);
-
-  Rng speed_rng(derive_seed(seed, kSpeedStream));
+// The same along a synthetic path for the scenario.
+double drive_synthetic(const SceneRequest& request, const HeightField& hills, const Shake& shake,
+                       GeneratedScene& scene) {
+  const ScenarioParams& p = request.scenario;
+  Rng speed_rng(derive_seed(request.seed, kSpeedStream));
   SpeedProfile speed{p.cruise_speed_mps, p.speed_variation, 20.0,
                      speed_rng.uniform(0.0, 2.0 * M_PI)};
-  const Shake shake = p.rough_road ? Shake(p.shake, derive_seed(seed, kShakeStream)) : Shake();
-
-  GeneratedScene scene;
-  std::shared_ptr<const Path> path;
+  const double sweep_end = request.frames * request.frame_period;
+  const double lead = lead_length(request);
   double ego_start_s = lead;
-  if (recorded) {
-    std::vector<Eigen::Isometry3d> poses(
-        request.trajectory_poses.begin(),
-        request.trajectory_poses.begin() +
-            std::min<std::size_t>(request.frames + 1, request.trajectory_poses.size()));
-    std::vector<double> times(request.trajectory_times.begin(),
-                              request.trajectory_times.begin() + poses.size());
-    path = recorded_path(poses, request.sensor_height, p.ego_lateral, lead);
-    auto trajectory = std::make_shared<SampledTrajectory>(times, poses, shake);
-    scene.trajectory = trajectory;
-    for (std::size_t i = 1; i < poses.size(); ++i)
-      scene.drive_length_m += (poses[i].translation() - poses[i - 1].translation()).norm();
+  if (p.kind == ScenarioKind::kLoop) {
+    const double lap = speed.distance(sweep_end);
+    const std::vector<PathPiece> pieces = loop_pieces(std::max(kMinLoopLength, lap));
+    scene.path = synthetic_path(pieces, true, hills);
+    ego_start_s = 0.5 * pieces.front().length;  // halfway along the first straight
+    // The sampled loop is a little shorter than its arcs: match the speed to it, so that the
+    // requested frames end where they began.
+    if (lap > kMinLoopLength) speed.cruise_mps *= scene.path->length() / lap;
   } else {
-    Rng path_rng(derive_seed(seed, kPathStream));
-    const double sweep_end = request.frames * request.frame_period;
-    if (p.kind == ScenarioKind::kLoop) {
-      const std::vector<PathPiece> pieces =
-          loop_pieces(std::max(kMinLoopLength, speed.distance(sweep_end)));
-      path = synthetic_path(pieces, true, hills);
-      ego_start_s = 0.5 * pieces.front().length;  // halfway along the first straight
-      // The sampled loop is a little shorter than its arcs: match the speed to it, so that the
-      // requested frames end where they began.
-      const double lap = speed.distance(sweep_end);
-      if (lap > kMinLoopLength) speed.cruise_mps *= path->length() / lap;
-    } else {
-      const double length = 2.0 * lead + speed.distance(sweep_end + request.frame_period);
-      path = synthetic_path(open_pieces(p.kind, length, lead, path_rng), false, hills);
-    }
-    scene.trajectory =
-        std::make_shared<PathTrajectory>(path, speed, ego_start_s, p.ego_lateral,
-                                         request.sensor_height, shake, request.frame_period);
-    scene.drive_length_m = speed.distance(sweep_end);
+    Rng path_rng(derive_seed(request.seed, kPathStream));
+    const double length = 2.0 * lead + speed.distance(sweep_end + request.frame_period);
+    scene.path = synthetic_path(open_pieces(p.kind, length, lead, path_rng), false, hills);
   }
-  scene.path = path;
-  scene.path_length_m = path->length();
+  scene.trajectory =
+      std::make_shared<PathTrajectory>(scene.path, speed, ego_start_s, p.ego_lateral,
+                                       request.sensor_height, shake, request.frame_period);
+  scene.drive_length_m = speed.distance(sweep_end);
+  return ego_start_s;
+}
 
+// Road, terrain, objects and moving things along the scene's path.
+std::shared_ptr<World> populate(const SceneRequest& request, const GeneratedScene& scene,
+                                const TerrainModel& terrain, double ego_start_s, bool recorded) {
+  const ScenarioParams& p = request.scenario;
+  const Path& path = *scene.path;
   auto world = std::make_shared<World>();
-  world->seed = seed;
-  world->path = path;
-  const TerrainModel terrain(*path, p, hills, relief, !recorded, request.reach);
-  build_road(*world, *path, road_cross_section(p));
-  if (!p.tunnel) build_terrain(*world, *path, terrain, request.reach);
+  world->seed = request.seed;
+  world->path = scene.path;
+  build_road(*world, path, road_cross_section(p));
+  if (!p.tunnel) build_terrain(*world, path, terrain, request.reach);
 
-  Rng plant_rng(derive_seed(seed, kPlantStream));
-  Rng layout_rng(derive_seed(seed, kLayoutStream));
-  Placer placer(*path);
-  Layout layout{*world, *path, terrain, p, layout_rng, placer, {}, {}};
+  Rng plant_rng(derive_seed(request.seed, kPlantStream));
+  Rng layout_rng(derive_seed(request.seed, kLayoutStream));
+  Placer placer(path);
+  Layout layout{*world, path, terrain, p, layout_rng, placer, {}, {}};
   make_prototypes(*world, p, layout, plant_rng);
   switch (p.kind) {
     case ScenarioKind::kUrban:
@@ -697,10 +690,31 @@ GeneratedScene generate_scene(const SceneRequest& request) {
     case ScenarioKind::kTunnel:
       break;  // the walls are part of the road's cross-section
   }
-  Rng mover_rng(derive_seed(seed, kMoverStream));
-  add_moving_cars(*world, *path, p, ego_start_s, !recorded && !path->closed(), mover_rng);
-  add_walkers(*world, *path, p, mover_rng);
-  scene.world = world;
+  Rng mover_rng(derive_seed(request.seed, kMoverStream));
+  add_moving_cars(*world, path, p, ego_start_s, !recorded && !path.closed(), mover_rng);
+  add_walkers(*world, path, p, mover_rng);
+  return world;
+}
+
+}  // namespace
+
+GeneratedScene generate_scene(const SceneRequest& request) {
+  check_request(request);
+  const ScenarioParams& p = request.scenario;
+  const bool recorded = !request.trajectory_poses.empty();
+  Rng hill_rng(derive_seed(request.seed, kHillStream));
+  const HeightField hills =
+      recorded ? HeightField() : HeightField(hill_rng, p.hill_amplitude_m, p.hill_wavelength_m, 3);
+  const HeightField relief(hill_rng, p.relief_amplitude_m, p.relief_wavelength_m, 4);
+  const Shake shake =
+      p.rough_road ? Shake(p.shake, derive_seed(request.seed, kShakeStream)) : Shake();
+
+  GeneratedScene scene;
+  const double ego_start_s = recorded ? drive_recorded(request, shake, scene)
+                                      : drive_synthetic(request, hills, shake, scene);
+  scene.path_length_m = scene.path->length();
+  const TerrainModel terrain(*scene.path, p, hills, relief, !recorded, request.reach);
+  scene.world = populate(request, scene, terrain, ego_start_s, recorded);
   return scene;
 }
 
