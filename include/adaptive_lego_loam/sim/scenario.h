@@ -1,0 +1,85 @@
+#pragma once
+// The scenarios the paper is about, and the scene generator that builds one from a seed along a
+// synthetic path or a recorded trajectory.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "adaptive_lego_loam/sim/trajectory.h"
+#include "adaptive_lego_loam/sim/world.h"
+
+namespace adaptive_lego_loam::sim {
+
+enum class ScenarioKind { kUrban, kHighway, kTunnel, kVegetation, kLoop };
+
+// "urban", "highway", "tunnel", "vegetation", "loop".
+const std::vector<std::string>& scenario_names();
+// Throws std::invalid_argument listing the names.
+ScenarioKind parse_scenario(const std::string& name);
+std::string scenario_name(ScenarioKind kind);
+
+// What a scenario's scene holds. Densities are per 100 m of road and per side.
+struct ScenarioParams {
+  ScenarioKind kind = ScenarioKind::kUrban;
+  // Road: carriageway from -road_half_width to +road_half_width around the centreline.
+  double road_half_width = 7.0;
+  double sidewalk_width = 3.0;  // 0: none
+  double curb_height = 0.15;
+  double ego_lateral = -1.75;  // where the ego vehicle drives, left of the centreline (m)
+  double cruise_speed_mps = 10.0;
+  double speed_variation = 0.1;  // +- share of the cruise speed, over 20 s
+  // Terrain: hills (amplitude of their sum, wavelength) and small relief off the road.
+  double hill_amplitude_m = 2.0;
+  double hill_wavelength_m = 400.0;
+  double relief_amplitude_m = 0.05;
+  double relief_wavelength_m = 10.0;
+  // Objects.
+  bool buildings = true;
+  double trees_per_100m = 6.0;
+  double bushes_per_100m = 12.0;
+  double poles_per_100m = 3.0;
+  double parked_car_share = 0.4;  // of parking slots taken (urban)
+  double moving_cars_per_km_lane = 10.0;
+  double walkers_per_100m = 3.0;
+  double standing_people_per_100m = 1.0;
+  double walls_per_100m = 0.0;
+  double fences_share = 0.5;  // of gaps between buildings closed by a fence
+  bool guard_rails = false;
+  bool tunnel = false;
+  // Vegetation: facet size and the leaf jitter from scan to scan (wind).
+  double leaf_jitter_m = 0.04;
+  int wind_states = 6;
+  // Turbulence: the sensor shakes on a rough road.
+  bool rough_road = false;
+  ShakeParams shake{0.03, 1.5, 1.5};
+};
+
+ScenarioParams default_scenario(ScenarioKind kind);
+
+struct SceneRequest {
+  ScenarioParams scenario;
+  uint64_t seed = 1;
+  int frames = 100;
+  double frame_period = 0.1;
+  double sensor_height = 1.73;  // above the road
+  double reach = 120.0;         // the sensor's maximum range: the scene extends this far
+  // A recorded trajectory (vehicle axes: x forward, z up) with its times; empty: a synthetic path.
+  std::vector<double> trajectory_times;
+  std::vector<Eigen::Isometry3d> trajectory_poses;
+};
+
+struct GeneratedScene {
+  std::shared_ptr<World> world;
+  std::shared_ptr<const Path> path;
+  std::shared_ptr<const Trajectory> trajectory;
+  double path_length_m = 0.0;
+  double drive_length_m = 0.0;  // driven over the requested frames
+};
+
+// Throws std::invalid_argument when the request cannot be met (e.g. more frames than a recorded
+// trajectory holds).
+GeneratedScene generate_scene(const SceneRequest& request);
+
+}  // namespace adaptive_lego_loam::sim

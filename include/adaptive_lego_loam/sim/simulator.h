@@ -1,0 +1,56 @@
+#pragma once
+// One simulated sweep: a ray per beam and column from where the sensor is when the column fires,
+// with range noise, dropouts, intensity, ring, time and the label of the surface hit.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <vector>
+
+#include "adaptive_lego_loam/core/scan.h"
+#include "adaptive_lego_loam/sim/lidar_model.h"
+#include "adaptive_lego_loam/sim/random.h"
+#include "adaptive_lego_loam/sim/ray_caster.h"
+#include "adaptive_lego_loam/sim/trajectory.h"
+#include "adaptive_lego_loam/sim/world.h"
+
+namespace adaptive_lego_loam::sim {
+
+struct SimFrame {
+  Scan scan;  // sensor frame, with ring (= beam, 0 lowest) and time (s from the sweep's start)
+  std::vector<uint32_t> labels;          // per point, SemanticKITTI packing
+  std::vector<Eigen::Vector3f> normals;  // per point, sensor frame, unit, facing the sensor
+  Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();  // world, at the sweep's start
+  double time = 0.0;                                              // sweep start
+};
+
+class LidarSimulator {
+ public:
+  LidarSimulator(const LidarModel& model, std::shared_ptr<const World> world,
+                 std::shared_ptr<const Trajectory> trajectory, uint64_t seed);
+
+  // Frames may be rendered in any order; frame f's noise depends only on the seed and f.
+  SimFrame render(int frame);
+  // The same into `out`, reusing its buffers.
+  void render(int frame, SimFrame& out);
+
+  const LidarModel& model() const { return model_; }
+  double ray_casting_seconds() const { return ray_casting_seconds_; }
+
+ private:
+  void make_rays(double sweep_start, const Eigen::Isometry3d& start_pose);
+  // Appends the point (without its time) and label of a hit that comes back; false when the
+  // return is lost (out of range, grazing incidence).
+  bool add_return(const Hit& hit, const Eigen::Vector3f& direction, int beam, int column, Rng& rng,
+                  SimFrame& out) const;
+
+  LidarModel model_;
+  std::shared_ptr<const Trajectory> trajectory_;
+  RayCaster caster_;
+  uint64_t seed_;
+  std::vector<Ray> rays_;  // beam-major: neighbours in a packet share a beam
+  std::vector<Hit> hits_;
+  std::vector<Eigen::Isometry3d> column_poses_;
+  double ray_casting_seconds_ = 0.0;
+};
+
+}  // namespace adaptive_lego_loam::sim

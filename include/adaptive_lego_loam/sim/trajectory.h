@@ -1,0 +1,106 @@
+#pragma once
+// Where the sensor is at any time: driving along a path at a varying speed, or following a
+// recorded trajectory (KITTI ground truth), with optional shaking from a rough road.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "adaptive_lego_loam/sim/path.h"
+
+namespace adaptive_lego_loam::sim {
+
+// Shaking of the sensor on a rough road: a sum of sinusoids per axis with seeded frequencies
+// (1.5-12 Hz) and phases; the amplitudes bound each axis. Zero amplitudes: a smooth ride.
+struct ShakeParams {
+  double vertical_m = 0.0;
+  double roll_deg = 0.0;
+  double pitch_deg = 0.0;
+};
+
+class Shake {
+ public:
+  Shake() = default;
+  Shake(const ShakeParams& params, uint64_t seed);
+  // The offset of the sensor from its smooth pose (applied in the sensor frame).
+  Eigen::Isometry3d at(double time) const;
+
+ private:
+  struct Wave {
+    double amplitude, frequency_hz, phase;
+  };
+  static double sum(const std::vector<Wave>& waves, double time);
+  std::vector<Wave> vertical_, roll_, pitch_;
+};
+
+class Trajectory {
+ public:
+  virtual ~Trajectory() = default;
+  // The sensor's pose in the world at `time` (s).
+  virtual Eigen::Isometry3d sensor_pose(double time) const = 0;
+  // Start time of frame `frame`'s sweep.
+  virtual double frame_time(int frame) const = 0;
+  // How many frames the trajectory covers.
+  virtual int frame_limit() const = 0;
+};
+
+// Speed that varies slowly around a cruise speed: v(t) = v0 (1 + a sin(2 pi t / T + phase)).
+struct SpeedProfile {
+  double cruise_mps = 10.0;
+  double variation = 0.1;  // a
+  double period_s = 20.0;  // T
+  double phase = 0.0;
+  double distance(double time) const;  // integral of v from 0 to time
+};
+
+// A vehicle driving along a path, the sensor `sensor_height` above the road, yawed along the path
+// and pitched with its grade.
+class PathTrajectory : public Trajectory {
+ public:
+  PathTrajectory(std::shared_ptr<const Path> path, const SpeedProfile& speed, double start_s,
+                 double lateral_offset, double sensor_height, const Shake& shake,
+                 double frame_period);
+  Eigen::Isometry3d sensor_pose(double time) const override;
+  double frame_time(int frame) const override { return frame * frame_period_; }
+  int frame_limit() const override;
+  double arc_length(double time) const { return start_s_ + speed_.distance(time); }
+
+ private:
+  std::shared_ptr<const Path> path_;
+  SpeedProfile speed_;
+  double start_s_, lateral_offset_, sensor_height_;
+  Shake shake_;
+  double frame_period_;
+};
+
+// Recorded sensor poses at given times, interpolated (linear position, slerp rotation).
+class SampledTrajectory : public Trajectory {
+ public:
+  // `times` strictly increasing, one per pose; frame i starts at times[i] - times[0].
+  SampledTrajectory(std::vector<double> times, std::vector<Eigen::Isometry3d> sensor_poses,
+                    const Shake& shake);
+  Eigen::Isometry3d sensor_pose(double time) const override;
+  double frame_time(int frame) const override { return times_.at(frame) - times_.front(); }
+  int frame_limit() const override { return static_cast<int>(times_.size()); }
+  const std::vector<Eigen::Isometry3d>& smooth_poses() const { return poses_; }
+
+ private:
+  std::vector<double> times_;
+  std::vector<Eigen::Isometry3d> poses_;
+  Shake shake_;
+};
+
+// A KITTI pose file: one 3x4 row-major matrix per line. Throws IoError naming the file and line.
+std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path);
+// One time (s) per line, strictly increasing. Throws IoError naming the file and line.
+std::vector<double> read_times(const std::string& path);
+
+// KITTI ground truth is the left camera's pose with camera axes (x right, y down, z forward).
+// Returns the same motion with vehicle axes (x forward, y left, z up) in a world whose axes are
+// the first camera's turned the same way: P' = C P C^-1, C mapping camera to vehicle axes. The
+// camera's small offset from the LiDAR (KITTI's Tr) is not applied: the path is what matters.
+std::vector<Eigen::Isometry3d> camera_poses_to_vehicle_axes(
+    const std::vector<Eigen::Isometry3d>& camera_poses);
+
+}  // namespace adaptive_lego_loam::sim

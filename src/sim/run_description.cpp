@@ -1,0 +1,93 @@
+#include "adaptive_lego_loam/sim/run_description.h"
+
+#include <yaml-cpp/yaml.h>
+
+namespace adaptive_lego_loam::sim {
+namespace {
+
+void emit_scenario(YAML::Emitter& out, const ScenarioParams& p) {
+  out << YAML::Key << "scenario" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "name" << YAML::Value << scenario_name(p.kind);
+  out << YAML::Key << "road_half_width_m" << YAML::Value << p.road_half_width;
+  out << YAML::Key << "sidewalk_width_m" << YAML::Value << p.sidewalk_width;
+  out << YAML::Key << "curb_height_m" << YAML::Value << p.curb_height;
+  out << YAML::Key << "ego_lateral_m" << YAML::Value << p.ego_lateral;
+  out << YAML::Key << "cruise_speed_mps" << YAML::Value << p.cruise_speed_mps;
+  out << YAML::Key << "speed_variation" << YAML::Value << p.speed_variation;
+  out << YAML::Key << "hill_amplitude_m" << YAML::Value << p.hill_amplitude_m;
+  out << YAML::Key << "hill_wavelength_m" << YAML::Value << p.hill_wavelength_m;
+  out << YAML::Key << "relief_amplitude_m" << YAML::Value << p.relief_amplitude_m;
+  out << YAML::Key << "relief_wavelength_m" << YAML::Value << p.relief_wavelength_m;
+  out << YAML::Key << "buildings" << YAML::Value << p.buildings;
+  out << YAML::Key << "trees_per_100m" << YAML::Value << p.trees_per_100m;
+  out << YAML::Key << "bushes_per_100m" << YAML::Value << p.bushes_per_100m;
+  out << YAML::Key << "poles_per_100m" << YAML::Value << p.poles_per_100m;
+  out << YAML::Key << "parked_car_share" << YAML::Value << p.parked_car_share;
+  out << YAML::Key << "moving_cars_per_km_lane" << YAML::Value << p.moving_cars_per_km_lane;
+  out << YAML::Key << "walkers_per_100m" << YAML::Value << p.walkers_per_100m;
+  out << YAML::Key << "standing_people_per_100m" << YAML::Value << p.standing_people_per_100m;
+  out << YAML::Key << "walls_per_100m" << YAML::Value << p.walls_per_100m;
+  out << YAML::Key << "fences_share" << YAML::Value << p.fences_share;
+  out << YAML::Key << "guard_rails" << YAML::Value << p.guard_rails;
+  out << YAML::Key << "tunnel" << YAML::Value << p.tunnel;
+  out << YAML::Key << "leaf_jitter_m" << YAML::Value << p.leaf_jitter_m;
+  out << YAML::Key << "wind_states" << YAML::Value << p.wind_states;
+  out << YAML::Key << "rough_road" << YAML::Value << p.rough_road;
+  out << YAML::Key << "shake" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "vertical_m" << YAML::Value << p.shake.vertical_m;
+  out << YAML::Key << "roll_deg" << YAML::Value << p.shake.roll_deg;
+  out << YAML::Key << "pitch_deg" << YAML::Value << p.shake.pitch_deg;
+  out << YAML::EndMap;
+  out << YAML::EndMap;
+}
+
+void emit_sensor(YAML::Emitter& out, const RunDescription& run) {
+  const SensorParams& s = run.sensor_params;
+  const SimSensorOptions& o = run.sensor_options;
+  out << YAML::Key << "sensor" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "name" << YAML::Value << run.sensor;
+  out << YAML::Key << "config" << YAML::Value << run.config_path;
+  out << YAML::Key << "config_name" << YAML::Value << s.name;
+  out << YAML::Key << "beams" << YAML::Value << s.rows;
+  out << YAML::Key << "columns" << YAML::Value << o.columns;
+  out << YAML::Key << "beam_angles_deg" << YAML::Value << YAML::Flow << s.beam_angles_deg;
+  out << YAML::Key << "beam_offsets_m" << YAML::Value << YAML::Flow << s.beam_offsets_m;
+  out << YAML::Key << "min_range_m" << YAML::Value << s.min_range;
+  out << YAML::Key << "max_range_m" << YAML::Value << s.max_range;
+  out << YAML::Key << "scan_period_s" << YAML::Value << s.scan_period;
+  out << YAML::Key << "height_m" << YAML::Value << run.request.sensor_height;
+  out << YAML::Key << "range_noise_m" << YAML::Value << o.range_noise_m;
+  out << YAML::Key << "full_return_incidence_deg" << YAML::Value << o.full_return_incidence_deg;
+  out << YAML::Key << "no_return_incidence_deg" << YAML::Value << o.no_return_incidence_deg;
+  out << YAML::Key << "motion_distortion" << YAML::Value << o.motion_distortion;
+  out << YAML::EndMap;
+}
+
+}  // namespace
+
+std::string run_yaml(const RunDescription& run) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(10);
+  out << YAML::BeginMap;
+  out << YAML::Key << "generator" << YAML::Value << "adaptive_lego_loam lidar_sim";
+  out << YAML::Key << "seed" << YAML::Value << run.request.seed;
+  out << YAML::Key << "frames" << YAML::Value << run.request.frames;
+  out << YAML::Key << "frame_period_s" << YAML::Value << run.request.frame_period;
+  out << YAML::Key << "trajectory" << YAML::Value
+      << (run.trajectory_path.empty() ? std::string("synthetic") : run.trajectory_path);
+  if (!run.trajectory_times_path.empty())
+    out << YAML::Key << "trajectory_times" << YAML::Value << run.trajectory_times_path;
+  out << YAML::Key << "path_length_m" << YAML::Value << run.path_length_m;
+  out << YAML::Key << "drive_length_m" << YAML::Value << run.drive_length_m;
+  emit_sensor(out, run);
+  emit_scenario(out, run.request.scenario);
+  out << YAML::Key << "labels" << YAML::Value
+      << "uint32 per point: semantic class (SemanticKITTI ids) in the lower 16 bits, instance "
+         "id in the upper 16";
+  out << YAML::Key << "poses" << YAML::Value
+      << "sensor pose at each sweep's start, relative to the first frame's (KITTI 3x4)";
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace adaptive_lego_loam::sim

@@ -1,0 +1,104 @@
+#include "adaptive_lego_loam/sim/scenario.h"
+
+#include <stdexcept>
+
+namespace adaptive_lego_loam::sim {
+
+const std::vector<std::string>& scenario_names() {
+  static const std::vector<std::string> names = {"urban", "highway", "tunnel", "vegetation",
+                                                 "loop"};
+  return names;
+}
+
+ScenarioKind parse_scenario(const std::string& name) {
+  const std::vector<std::string>& names = scenario_names();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return static_cast<ScenarioKind>(i);
+  }
+  std::string allowed;
+  for (const std::string& known : names)
+    allowed += (allowed.empty() ? "" : ", ") + known;
+  throw std::invalid_argument("unknown scenario '" + name + "': expected one of " + allowed);
+}
+
+std::string scenario_name(ScenarioKind kind) {
+  return scenario_names().at(static_cast<std::size_t>(kind));
+}
+
+ScenarioParams default_scenario(ScenarioKind kind) {
+  ScenarioParams p;
+  p.kind = kind;
+  switch (kind) {
+    case ScenarioKind::kUrban:
+    case ScenarioKind::kLoop:
+      // Defaults of ScenarioParams: a two-lane street with parking lanes and sidewalks.
+      p.cruise_speed_mps = kind == ScenarioKind::kLoop ? 8.0 : 10.0;
+      break;
+    case ScenarioKind::kHighway:
+      // Two carriageways of three lanes, guard rails, sparse shrubs: weak constraint along x.
+      p.road_half_width = 12.5;
+      p.sidewalk_width = 0.0;
+      p.ego_lateral = -6.125;
+      p.cruise_speed_mps = 25.0;
+      p.hill_amplitude_m = 3.0;
+      p.hill_wavelength_m = 700.0;
+      p.relief_amplitude_m = 0.1;
+      p.relief_wavelength_m = 20.0;
+      p.buildings = false;
+      p.trees_per_100m = 0.8;
+      p.bushes_per_100m = 4.0;
+      p.poles_per_100m = 0.0;
+      p.parked_car_share = 0.0;
+      p.moving_cars_per_km_lane = 4.0;
+      p.walkers_per_100m = 0.0;
+      p.standing_people_per_100m = 0.0;
+      p.fences_share = 0.0;
+      p.guard_rails = true;
+      break;
+    case ScenarioKind::kTunnel:
+      // Two lanes between smooth walls, a raised ledge on each side.
+      p.road_half_width = 4.5;
+      p.sidewalk_width = 1.0;
+      p.curb_height = 0.25;
+      p.ego_lateral = -2.25;
+      p.cruise_speed_mps = 15.0;
+      p.hill_amplitude_m = 0.5;
+      p.hill_wavelength_m = 800.0;
+      p.buildings = false;
+      p.trees_per_100m = 0.0;
+      p.bushes_per_100m = 0.0;
+      p.poles_per_100m = 0.0;
+      p.parked_car_share = 0.0;
+      p.moving_cars_per_km_lane = 3.0;
+      p.walkers_per_100m = 0.0;
+      p.standing_people_per_100m = 0.0;
+      p.fences_share = 0.0;
+      p.tunnel = true;
+      break;
+    case ScenarioKind::kVegetation:
+      // A narrow, winding, hilly road through dense bushes and trees; a few walls; rough.
+      p.road_half_width = 2.5;
+      p.sidewalk_width = 0.0;
+      p.ego_lateral = 0.0;
+      p.cruise_speed_mps = 6.0;
+      p.hill_amplitude_m = 4.0;
+      p.hill_wavelength_m = 300.0;
+      p.relief_amplitude_m = 0.3;
+      p.relief_wavelength_m = 8.0;
+      p.buildings = false;
+      p.trees_per_100m = 20.0;
+      p.bushes_per_100m = 90.0;
+      p.poles_per_100m = 2.0;
+      p.parked_car_share = 0.0;
+      p.moving_cars_per_km_lane = 0.0;
+      p.walkers_per_100m = 0.3;
+      p.standing_people_per_100m = 0.0;
+      p.walls_per_100m = 0.4;
+      p.fences_share = 0.0;
+      p.rough_road = true;
+      break;
+  }
+  return p;
+}
+
+}  // namespace adaptive_lego_loam::sim

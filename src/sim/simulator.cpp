@@ -1,0 +1,112 @@
+#include "adaptive_lego_loam/sim/simulator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "adaptive_lego_loam/sim/random.h"
+
+namespace adaptive_lego_loam::sim {
+namespace {
+
+constexpr uint64_t kNoiseStream = 0x4E4F495345ull;  // "NOISE"
+
+}  // namespace
+
+LidarSimulator::LidarSimulator(const LidarModel& model, std::shared_ptr<const World> world,
+                               std::shared_ptr<const Trajectory> trajectory, uint64_t seed)
+    : model_(model),
+      trajectory_(std::move(trajectory)),
+      // Beams start up to a few decimetres above the sensor origin; moving objects a few metres.
+      caster_(std::move(world), static_cast<float>(model.sensor().max_range) + 1.0f),
+      seed_(seed) {}
+
+void LidarSimulator::make_rays(double sweep_start, const Eigen::Isometry3d& start_pose) {
+  const int beams = model_.beams(), columns = model_.columns();
+  column_poses_.resize(columns);
+  for (int column = 0; column < columns; ++column) {
+    column_poses_[column] = model_.options().motion_distortion
+                                ? trajectory_->sensor_pose(sweep_start + model_.column_time(column))
+                                : start_pose;
+  }
+  rays_.resize(static_cast<std::size_t>(beams) * columns);
+  const float max_distance = static_cast<float>(model_.sensor().max_range) + 1.0f;
+  for (int beam = 0; beam < beams; ++beam) {
+    for (int column = 0; column < columns; ++column) {
+      const Eigen::Isometry3d& pose = column_poses_[column];
+      Ray& ray = rays_[static_cast<std::size_t>(beam) * columns + column];
+      ray.origin = (pose * model_.beam_origin(beam)).cast<float>();
+      ray.direction = (pose.linear() * model_.direction(beam, column)).cast<float>();
+      ray.max_distance = max_distance;
+    }
+  }
+}
+
+SimFrame LidarSimulator::render(int frame) {
+  SimFrame out;
+  render(frame, out);
+  return out;
+}
+
+void LidarSimulator::render(int frame, SimFrame& out) {
+  out.time = trajectory_->frame_time(frame);
+  out.sensor_pose = trajectory_->sensor_pose(out.time);
+  const double period = model_.sensor().scan_period;
+  const Eigen::Vector3d middle = trajectory_->sensor_pose(out.time + 0.5 * period).translation();
+
+  const auto started = std::chrono::steady_clock::now();
+  // Moving objects stand where they are at the sweep's middle for the whole sweep.
+  caster_.prepare(frame, out.time + 0.5 * period, middle);
+  make_rays(out.time, out.sensor_pose);
+  caster_.cast(rays_, hits_);
+  ray_casting_seconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  out.scan.stamp = out.time;
+  out.scan.has_ring = out.scan.has_time = true;
+  out.scan.points.clear();
+  out.labels.clear();
+  out.normals.clear();
+  Rng rng(derive_seed(seed_, kNoiseStream, static_cast<uint64_t>(frame)));
+  const int beams = model_.beams(), columns = model_.columns();
+  // Column by column, the order a Velodyne reports points in. Hits are stored beam by beam: a
+  // block of columns keeps the rows it reads in cache.
+  constexpr int kBlock = 16;
+  for (int block = 0; block < columns; block += kBlock) {
+    for (int column = block; column < std::min(block + kBlock, columns); ++column) {
+      const Eigen::Matrix3f to_sensor = column_poses_[column].linear().transpose().cast<float>();
+      const float time = static_cast<float>(model_.column_time(column));
+      for (int beam = 0; beam < beams; ++beam) {
+        const std::size_t index = static_cast<std::size_t>(beam) * columns + column;
+        if (!add_return(hits_[index], rays_[index].direction, beam, column, rng, out)) continue;
+        out.scan.points.back().time = time;
+        out.normals.push_back(to_sensor * hits_[index].normal);
+      }
+    }
+  }
+}
+
+bool LidarSimulator::add_return(const Hit& hit, const Eigen::Vector3f& direction, int beam,
+                                int column, Rng& rng, SimFrame& out) const {
+  if (!hit.valid() || hit.distance < model_.sensor().min_range ||
+      hit.distance > model_.sensor().max_range)
+    return false;
+  const double cos_incidence = -hit.normal.dot(direction);
+  const double probability = model_.return_probability(cos_incidence);
+  if (probability < 1.0 && rng.uniform() >= probability) return false;
+  const double noise = model_.options().range_noise_m;
+  const double range = hit.distance + (noise > 0.0 ? rng.normal(0.0, noise) : 0.0);
+  const Eigen::Vector3d local = model_.beam_origin(beam) + range * model_.direction(beam, column);
+  ScanPoint point;
+  point.x = static_cast<float>(local.x());
+  point.y = static_cast<float>(local.y());
+  point.z = static_cast<float>(local.z());
+  // In [0, 1] as KITTI's reflectance: Lambertian, from the surface's reflectivity.
+  point.intensity = static_cast<float>(hit.reflectivity * cos_incidence);
+  point.ring = beam;
+  out.scan.points.push_back(point);
+  out.labels.push_back(hit.label);
+  return true;
+}
+
+}  // namespace adaptive_lego_loam::sim

@@ -1,0 +1,177 @@
+#include "adaptive_lego_loam/sim/trajectory.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/sim/random.h"
+
+namespace adaptive_lego_loam::sim {
+namespace {
+
+constexpr int kWavesPerAxis = 4;
+
+double degrees_to_radians(double degrees) {
+  return degrees * M_PI / 180.0;
+}
+
+}  // namespace
+
+Shake::Shake(const ShakeParams& params, uint64_t seed) {
+  Rng rng(seed);
+  auto make_waves = [&rng](double bound) {
+    std::vector<Wave> waves(kWavesPerAxis);
+    double weight_sum = 0.0;
+    for (Wave& wave : waves) {
+      wave.amplitude = rng.uniform(0.5, 1.0);
+      wave.frequency_hz = rng.uniform(1.5, 12.0);
+      wave.phase = rng.uniform(0.0, 2.0 * M_PI);
+      weight_sum += wave.amplitude;
+    }
+    for (Wave& wave : waves)
+      wave.amplitude *= bound / weight_sum;  // |sum| <= bound
+    return waves;
+  };
+  vertical_ = make_waves(params.vertical_m);
+  roll_ = make_waves(degrees_to_radians(params.roll_deg));
+  pitch_ = make_waves(degrees_to_radians(params.pitch_deg));
+}
+
+double Shake::sum(const std::vector<Wave>& waves, double time) {
+  double value = 0.0;
+  for (const Wave& wave : waves)
+    value += wave.amplitude * std::sin(2.0 * M_PI * wave.frequency_hz * time + wave.phase);
+  return value;
+}
+
+Eigen::Isometry3d Shake::at(double time) const {
+  Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
+  if (vertical_.empty()) return offset;
+  offset.translation().z() = sum(vertical_, time);
+  offset.linear() = (Eigen::AngleAxisd(sum(roll_, time), Eigen::Vector3d::UnitX()) *
+                     Eigen::AngleAxisd(sum(pitch_, time), Eigen::Vector3d::UnitY()))
+                        .toRotationMatrix();
+  return offset;
+}
+
+double SpeedProfile::distance(double time) const {
+  const double omega = 2.0 * M_PI / period_s;
+  return cruise_mps *
+         (time - variation / omega * (std::cos(omega * time + phase) - std::cos(phase)));
+}
+
+PathTrajectory::PathTrajectory(std::shared_ptr<const Path> path, const SpeedProfile& speed,
+                               double start_s, double lateral_offset, double sensor_height,
+                               const Shake& shake, double frame_period)
+    : path_(std::move(path)),
+      speed_(speed),
+      start_s_(start_s),
+      lateral_offset_(lateral_offset),
+      sensor_height_(sensor_height),
+      shake_(shake),
+      frame_period_(frame_period) {}
+
+int PathTrajectory::frame_limit() const {
+  if (path_->closed()) return INT_MAX;
+  const double end_s = path_->length() - start_s_;  // keep as much road ahead as behind
+  int frames = 0;
+  while (arc_length(frame_time(frames) + frame_period_) <= end_s)
+    ++frames;
+  return frames;
+}
+
+Eigen::Isometry3d PathTrajectory::sensor_pose(double time) const {
+  const Path::Frame frame = path_->at(arc_length(time));
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(frame.position + lateral_offset_ * frame.left);
+  pose.rotate(Eigen::AngleAxisd(frame.heading, Eigen::Vector3d::UnitZ()));
+  pose.rotate(Eigen::AngleAxisd(-std::atan(frame.grade), Eigen::Vector3d::UnitY()));
+  pose.translate(Eigen::Vector3d(0.0, 0.0, sensor_height_));
+  return pose * shake_.at(time);
+}
+
+SampledTrajectory::SampledTrajectory(std::vector<double> times,
+                                     std::vector<Eigen::Isometry3d> sensor_poses,
+                                     const Shake& shake)
+    : times_(std::move(times)), poses_(std::move(sensor_poses)), shake_(shake) {
+  if (times_.size() != poses_.size() || times_.empty()) {
+    throw std::invalid_argument("trajectory: " + std::to_string(times_.size()) + " times for " +
+                                std::to_string(poses_.size()) + " poses");
+  }
+}
+
+Eigen::Isometry3d SampledTrajectory::sensor_pose(double time) const {
+  const double t = std::clamp(time + times_.front(), times_.front(), times_.back());
+  const auto after = std::upper_bound(times_.begin(), times_.end(), t);
+  const std::size_t i =
+      after == times_.end() ? times_.size() - 1 : static_cast<std::size_t>(after - times_.begin());
+  if (i == 0 || times_[i] == t) return poses_[i] * shake_.at(time);
+  const double f = (t - times_[i - 1]) / (times_[i] - times_[i - 1]);
+  const Eigen::Quaterniond q0(poses_[i - 1].linear()), q1(poses_[i].linear());
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = (1.0 - f) * poses_[i - 1].translation() + f * poses_[i].translation();
+  pose.linear() = q0.slerp(f, q1).toRotationMatrix();
+  return pose * shake_.at(time);
+}
+
+std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw IoError(path + ": cannot open KITTI pose file");
+  std::vector<Eigen::Isometry3d> poses;
+  std::string line;
+  for (int number = 1; std::getline(file, line); ++number) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream fields(line);
+    Eigen::Matrix<double, 3, 4> matrix;
+    for (int k = 0; k < 12; ++k) {
+      if (!(fields >> matrix(k / 4, k % 4))) {
+        throw IoError(path + ":" + std::to_string(number) +
+                      ": expected 12 numbers (a 3x4 row-major pose)");
+      }
+    }
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.matrix().topRows<3>() = matrix;
+    // Re-orthonormalise: the file's rotations carry about 7 significant digits.
+    pose.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
+    poses.push_back(pose);
+  }
+  if (poses.empty()) throw IoError(path + ": no poses in file");
+  return poses;
+}
+
+std::vector<double> read_times(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw IoError(path + ": cannot open times file");
+  std::vector<double> times;
+  std::string line;
+  for (int number = 1; std::getline(file, line); ++number) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream fields(line);
+    double time = 0.0;
+    if (!(fields >> time) || (!times.empty() && !(time > times.back()))) {
+      throw IoError(path + ":" + std::to_string(number) +
+                    ": expected one time in seconds per line, increasing");
+    }
+    times.push_back(time);
+  }
+  return times;
+}
+
+std::vector<Eigen::Isometry3d> camera_poses_to_vehicle_axes(
+    const std::vector<Eigen::Isometry3d>& camera_poses) {
+  Eigen::Isometry3d camera_to_vehicle = Eigen::Isometry3d::Identity();
+  camera_to_vehicle.linear() << 0, 0, 1,  // vehicle x = camera z (forward)
+      -1, 0, 0,                           // vehicle y = -camera x (left)
+      0, -1, 0;                           // vehicle z = -camera y (up)
+  std::vector<Eigen::Isometry3d> poses;
+  poses.reserve(camera_poses.size());
+  for (const Eigen::Isometry3d& pose : camera_poses)
+    poses.push_back(camera_to_vehicle * pose * camera_to_vehicle.inverse());
+  return poses;
+}
+
+}  // namespace adaptive_lego_loam::sim
