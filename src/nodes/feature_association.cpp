@@ -5,6 +5,8 @@
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 
+#include <optional>
+
 #include "adaptive_lego_loam/core/lidar_odometry.h"
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/node_config.h"
@@ -23,6 +25,7 @@ class FeatureAssociation {
  public:
   FeatureAssociation(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config)
       : odometry_(config.sensor, config.features, config.odometry),
+        motion_from_mapping_(config.odometry.motion_from_mapping && config.mapping.enabled),
         frames_(ros_bridge::load_frame_names(private_nh)),
         matcher_({"segmented_cloud", "segmented_cloud_info", "outlier_cloud"},
                  private_nh.param("max_pending_scans", 10)),
@@ -39,6 +42,9 @@ class FeatureAssociation {
     cloud_sub_ = nh.subscribe("segmented_cloud", queue, &FeatureAssociation::on_cloud, this);
     info_sub_ = nh.subscribe("segmented_cloud_info", queue, &FeatureAssociation::on_info, this);
     outlier_sub_ = nh.subscribe("outlier_cloud", queue, &FeatureAssociation::on_outliers, this);
+    if (motion_from_mapping_) {
+      mapped_sub_ = nh.subscribe("aft_mapped_to_init", queue, &FeatureAssociation::on_mapped, this);
+    }
   }
 
  private:
@@ -46,6 +52,23 @@ class FeatureAssociation {
   void on_info(const CloudInfoMsg::ConstPtr& msg) { add(kInfo, msg->header, msg); }
   void on_outliers(const sensor_msgs::PointCloud2ConstPtr& msg) {
     add(kOutliers, msg->header, msg);
+  }
+
+  // As the offline pipeline: the last motion as mapping refined it de-skews and predicts the next
+  // scan. It is exact when mapping keeps up (the graph test plays each scan after the last one
+  // was mapped); a scan that arrives first uses the odometry's own motion.
+  void on_mapped(const nav_msgs::OdometryConstPtr& msg) {
+    try {
+      const Eigen::Isometry3d pose =
+          ros_bridge::pose_from_ros(msg->pose.pose, mapped_sub_.getTopic());
+      if (last_mapped_pose_) odometry_.use_mapped_motion(last_mapped_pose_->inverse() * pose);
+      last_mapped_pose_ = pose;
+    } catch (const std::exception& e) {
+      if (bad_input_log_.ready()) {
+        ROS_WARN("feature_association: mapped pose ignored: %s%s", e.what(),
+                 bad_input_log_.suppressed_note().c_str());
+      }
+    }
   }
 
   void add(Slot slot, const std_msgs::Header& header, ros_bridge::StampMatcher::Message msg) {
@@ -105,12 +128,14 @@ class FeatureAssociation {
   }
 
   LidarOdometry odometry_;
+  bool motion_from_mapping_;
+  std::optional<Eigen::Isometry3d> last_mapped_pose_;
   OdometryOutput out_;
   ros_bridge::FrameNames frames_;
   ros_bridge::StampMatcher matcher_;
   ros_bridge::Throttle pairing_log_, bad_input_log_;
   ros_bridge::StageSummary summary_;
-  ros::Subscriber cloud_sub_, info_sub_, outlier_sub_;
+  ros::Subscriber cloud_sub_, info_sub_, outlier_sub_, mapped_sub_;
   ros::Publisher corner_pub_, surface_pub_, outlier_pub_, odometry_pub_, sharp_pub_, flat_pub_;
 };
 
