@@ -36,15 +36,13 @@ struct DirectionPrior {
   }
 };
 
-std::optional<LineMatch> line_near(const pcl::KdTreeFLANN<CloudPoint>& tree, const Cloud& map,
+std::optional<LineMatch> line_near(const PointKdTree& tree, const Cloud& map,
                                    const Eigen::Vector3d& sensor_point,
                                    const Eigen::Vector3d& map_point) {
-  std::vector<int> indices(kNeighbours);
-  std::vector<float> squared(kNeighbours);
-  CloudPoint query;
-  query.getVector3fMap() = map_point.cast<float>();
-  if (tree.nearestKSearch(query, kNeighbours, indices, squared) < kNeighbours ||
-      squared.back() > kMaxNeighbourSquaredDistance) {
+  uint32_t indices[kNeighbours];
+  float squared[kNeighbours];
+  if (tree.nearest(map_point.cast<float>(), kNeighbours, indices, squared) < kNeighbours ||
+      squared[kNeighbours - 1] > kMaxNeighbourSquaredDistance) {
     return std::nullopt;
   }
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -52,7 +50,7 @@ std::optional<LineMatch> line_near(const pcl::KdTreeFLANN<CloudPoint>& tree, con
     centroid += map[index].getVector3fMap().cast<double>();
   centroid /= kNeighbours;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (int index : indices) {
+  for (uint32_t index : indices) {
     const Eigen::Vector3d d = map[index].getVector3fMap().cast<double>() - centroid;
     covariance += d * d.transpose();
   }
@@ -64,15 +62,13 @@ std::optional<LineMatch> line_near(const pcl::KdTreeFLANN<CloudPoint>& tree, con
   return LineMatch{sensor_point, centroid + 0.1 * direction, centroid - 0.1 * direction};
 }
 
-std::optional<PlaneMatch> plane_near(const pcl::KdTreeFLANN<CloudPoint>& tree, const Cloud& map,
+std::optional<PlaneMatch> plane_near(const PointKdTree& tree, const Cloud& map,
                                      const Eigen::Vector3d& sensor_point,
                                      const Eigen::Vector3d& map_point) {
-  std::vector<int> indices(kNeighbours);
-  std::vector<float> squared(kNeighbours);
-  CloudPoint query;
-  query.getVector3fMap() = map_point.cast<float>();
-  if (tree.nearestKSearch(query, kNeighbours, indices, squared) < kNeighbours ||
-      squared.back() > kMaxNeighbourSquaredDistance) {
+  uint32_t indices[kNeighbours];
+  float squared[kNeighbours];
+  if (tree.nearest(map_point.cast<float>(), kNeighbours, indices, squared) < kNeighbours ||
+      squared[kNeighbours - 1] > kMaxNeighbourSquaredDistance) {
     return std::nullopt;
   }
   // n . x = -1 in the least-squares sense, then normalised: the plane n . x + d = 0.
@@ -175,8 +171,8 @@ bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vecto
   }
   corners_ = voxel_filter(corners, params_.corner_voxel);
   surfaces_ = voxel_filter(surfaces, params_.surface_voxel);
-  if (!corners_->empty()) corner_tree_.setInputCloud(corners_);
-  if (!surfaces_->empty()) surface_tree_.setInputCloud(surfaces_);
+  corner_tree_.build(corners_);
+  surface_tree_.build(surfaces_);
   return true;
 }
 

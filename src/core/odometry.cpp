@@ -64,11 +64,11 @@ void ScanToScanOdometry::find_edge_matches(const Cloud& sharp, const double* pos
   if (previous_corners_->size() < 2) return;
   const float max_squared =
       static_cast<float>(params_.max_match_distance * params_.max_match_distance);
-  std::vector<int> indices(kCandidates);
-  std::vector<float> squared(kCandidates);
+  uint32_t indices[kCandidates];
+  float squared[kCandidates];
   for (const CloudPoint& p : sharp) {
     const int found =
-        corner_tree_.nearestKSearch(moved_point(p, pose), kCandidates, indices, squared);
+        corner_tree_.nearest(moved_point(p, pose).getVector3fMap(), kCandidates, indices, squared);
     if (found < 2 || squared[0] > max_squared) continue;
     // The line runs through the nearest edge point and the nearest one on a neighbouring row.
     const CloudPoint& nearest = (*previous_corners_)[indices[0]];
@@ -88,11 +88,11 @@ void ScanToScanOdometry::find_plane_matches(const Cloud& flat, const double* pos
   if (previous_surfaces_->size() < 3) return;
   const float max_squared =
       static_cast<float>(params_.max_match_distance * params_.max_match_distance);
-  std::vector<int> indices(kCandidates);
-  std::vector<float> squared(kCandidates);
+  uint32_t indices[kCandidates];
+  float squared[kCandidates];
   for (const CloudPoint& p : flat) {
     const int found =
-        surface_tree_.nearestKSearch(moved_point(p, pose), kCandidates, indices, squared);
+        surface_tree_.nearest(moved_point(p, pose).getVector3fMap(), kCandidates, indices, squared);
     if (found < 3 || squared[0] > max_squared) continue;
     // The plane runs through the nearest surface point, the nearest on its row and the nearest
     // on a neighbouring row.
@@ -179,8 +179,8 @@ OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
   }
   previous_corners_ = current.less_sharp;
   previous_surfaces_ = current.less_flat;
-  if (!previous_corners_->empty()) corner_tree_.setInputCloud(previous_corners_);
-  if (!previous_surfaces_->empty()) surface_tree_.setInputCloud(previous_surfaces_);
+  corner_tree_.build(previous_corners_);
+  surface_tree_.build(previous_surfaces_);
   return result;
 }
 

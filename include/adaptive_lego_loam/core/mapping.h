@@ -4,13 +4,12 @@
 // the surrounding keyframes. Degenerate directions of the normal equations (LOAM's eigenvalue
 // test) receive no update.
 
-#include <pcl/kdtree/kdtree_flann.h>
-
 #include <Eigen/Geometry>
 #include <optional>
 #include <vector>
 
 #include "adaptive_lego_loam/core/cloud.h"
+#include "adaptive_lego_loam/core/kdtree.h"
 #include "adaptive_lego_loam/core/keyframe.h"
 #include "adaptive_lego_loam/core/params.h"
 
@@ -25,8 +24,8 @@ class LocalMap {
   bool update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position, int version);
   const CloudPtr& corners() const { return corners_; }
   const CloudPtr& surfaces() const { return surfaces_; }
-  const pcl::KdTreeFLANN<CloudPoint>& corner_tree() const { return corner_tree_; }
-  const pcl::KdTreeFLANN<CloudPoint>& surface_tree() const { return surface_tree_; }
+  const PointKdTree& corner_tree() const { return corner_tree_; }
+  const PointKdTree& surface_tree() const { return surface_tree_; }
   bool empty() const { return corners_->empty() && surfaces_->empty(); }
 
  private:
@@ -36,7 +35,7 @@ class LocalMap {
   std::vector<int> selected_;
   int version_ = -1;
   CloudPtr corners_{new Cloud}, surfaces_{new Cloud};
-  pcl::KdTreeFLANN<CloudPoint> corner_tree_, surface_tree_;
+  PointKdTree corner_tree_, surface_tree_;
 };
 
 struct MapMatchResult {

@@ -4,11 +4,10 @@
 // the previous scan's surfaces. Two solves, selectable: LeGO-LOAM's two steps (planes fix z, roll
 // and pitch; then edges fix x, y and yaw) or one joint 6-DoF solve.
 
-#include <pcl/kdtree/kdtree_flann.h>
-
 #include <Eigen/Geometry>
 
 #include "adaptive_lego_loam/core/features.h"
+#include "adaptive_lego_loam/core/kdtree.h"
 #include "adaptive_lego_loam/core/params.h"
 
 namespace adaptive_lego_loam {
@@ -40,7 +39,7 @@ class ScanToScanOdometry {
   OdometryParams params_;
   bool first_pair_ = true;
   CloudPtr previous_corners_, previous_surfaces_;
-  pcl::KdTreeFLANN<CloudPoint> corner_tree_, surface_tree_;
+  PointKdTree corner_tree_, surface_tree_;
 };
 
 }  // namespace adaptive_lego_loam
