@@ -14,7 +14,14 @@ if ! catkin_make -DCATKIN_ENABLE_TESTING=ON run_tests -j2 >"$ALEGO_WS/test.log" 
   exit 1
 fi
 grep -E "^\[ *(RUN|  FAILED|  PASSED) *\]|FAILURE|ERROR" "$ALEGO_WS/test.log" | grep -v "RUN" || true
-summary=$(catkin_test_results build/test_results --all 2>&1 | tail -n 1) || status=$?
+results=$(catkin_test_results build/test_results --all 2>&1) || true
+summary=$(echo "$results" | tail -n 1)
+# catkin_test_results skips a result file it cannot parse (a crashed or truncated test): fail.
+if echo "$results" | grep -q "^Skipping"; then
+  echo "$results" | grep "^Skipping"
+  echo "test: a test left an unreadable result file" >&2
+  exit 1
+fi
 catkin_test_results build/test_results --verbose >/dev/null 2>&1 && status=0 || status=$?
 echo "test: $summary"
 count=$(echo "$summary" | sed -n 's/^Summary: \([0-9]*\) tests.*/\1/p')

@@ -49,6 +49,7 @@ TEST(Params, OutOfRangeValueNamesKeyAndRange) {
   EXPECT_NE(error.find("test.yaml"), std::string::npos) << error;
   EXPECT_NE(error.find("sensor.rows"), std::string::npos) << error;
   EXPECT_NE(error.find("[1, 512]"), std::string::npos) << error;
+  EXPECT_NE(error.find("test.yaml: sensor.rows = -3 is out of range"), std::string::npos) << error;
 }
 
 TEST(Params, WrongTypeNamesKey) {

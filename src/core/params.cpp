@@ -28,8 +28,8 @@ class SectionReader {
       fail(full(key), "expected " + kind<T>() + " in " + range(lo, hi));
     }
     if (!(parsed >= lo && parsed <= hi)) {
-      fail(full(key), "= " + item.Scalar() + " is out of range: expected " + kind<T>() + " in " +
-                          range(lo, hi));
+      throw ConfigError(source_ + ": " + full(key) + " = " + item.Scalar() +
+                        " is out of range: expected " + kind<T>() + " in " + range(lo, hi));
     }
     value = parsed;
   }
