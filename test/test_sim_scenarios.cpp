@@ -12,6 +12,7 @@
 
 #include "adaptive_lego_loam/core/params.h"
 #include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/scan_files.h"
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/sequence_writer.h"
@@ -245,7 +246,7 @@ TEST(SimScenarios, RoughRoadShakesTheSensor) {
 
 TEST(SimTrajectory, KittiGroundTruthDrivesTheSensor) {
   const std::vector<Eigen::Isometry3d> camera =
-      read_kitti_poses(std::string(TEST_DATA_DIR) + "/kitti_seq07/poses.txt");
+      adaptive_lego_loam::read_kitti_poses(std::string(TEST_DATA_DIR) + "/kitti_seq07/poses.txt");
   const std::vector<Eigen::Isometry3d> vehicle = camera_poses_to_vehicle_axes(camera);
   SceneRequest request = request_for(ScenarioKind::kUrban, 3, 4);
   request.trajectory_poses = vehicle;
@@ -286,11 +287,13 @@ TEST(SimSequenceWriter, WritesAKittiFolder) {
   std::string first_line;
   std::getline(poses, first_line);
   EXPECT_EQ(first_line, kitti_pose_line(Eigen::Isometry3d::Identity()));
-  const std::vector<Eigen::Isometry3d> read_back = read_kitti_poses((dir / "poses.txt").string());
+  const std::vector<Eigen::Isometry3d> read_back =
+      adaptive_lego_loam::read_kitti_poses((dir / "poses.txt").string());
   ASSERT_EQ(read_back.size(), static_cast<std::size_t>(kFrames));
   const Eigen::Isometry3d expected = frames[0].sensor_pose.inverse() * frames[2].sensor_pose;
   EXPECT_LT((read_back[2].matrix() - expected.matrix()).norm(), 1e-6);
-  EXPECT_EQ(read_times((dir / "times.txt").string()).size(), static_cast<std::size_t>(kFrames));
+  EXPECT_EQ(read_kitti_times((dir / "times.txt").string()).size(),
+            static_cast<std::size_t>(kFrames));
   std::ifstream calib(dir / "calib.txt");
   const std::string calib_text((std::istreambuf_iterator<char>(calib)),
                                std::istreambuf_iterator<char>());

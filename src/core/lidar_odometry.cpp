@@ -19,8 +19,8 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
     // orientation is LeGO-LOAM's clockwise angle, the negated azimuth.
     const double start_azimuth = -cloud.info.start_orientation;
     for (std::vector<ScanPoint>* points : {&points_, &outliers_}) {
-      out.deskewed_by_time_field = sweep_fractions(*points, has_time, start_azimuth,
-                                                   sensor_.scan_period, fractions_);
+      out.deskewed_by_time_field =
+          sweep_fractions(*points, has_time, start_azimuth, sensor_.scan_period, fractions_);
       deskew_to_sweep_end(last_motion_, fractions_, *points);
     }
   }

@@ -36,15 +36,19 @@ struct DirectionPrior {
   }
 };
 
+// The kNeighbours nearest map points, when all lie within LOAM's 1 m.
+bool close_neighbours(const PointKdTree& tree, const Eigen::Vector3d& map_point,
+                      uint32_t* indices) {
+  float squared[kNeighbours];
+  return tree.nearest(map_point.cast<float>(), kNeighbours, indices, squared) == kNeighbours &&
+         squared[kNeighbours - 1] <= kMaxNeighbourSquaredDistance;
+}
+
 std::optional<LineMatch> line_near(const PointKdTree& tree, const Cloud& map,
                                    const Eigen::Vector3d& sensor_point,
                                    const Eigen::Vector3d& map_point) {
   uint32_t indices[kNeighbours];
-  float squared[kNeighbours];
-  if (tree.nearest(map_point.cast<float>(), kNeighbours, indices, squared) < kNeighbours ||
-      squared[kNeighbours - 1] > kMaxNeighbourSquaredDistance) {
-    return std::nullopt;
-  }
+  if (!close_neighbours(tree, map_point, indices)) return std::nullopt;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (int index : indices)
     centroid += map[index].getVector3fMap().cast<double>();
@@ -66,11 +70,7 @@ std::optional<PlaneMatch> plane_near(const PointKdTree& tree, const Cloud& map,
                                      const Eigen::Vector3d& sensor_point,
                                      const Eigen::Vector3d& map_point) {
   uint32_t indices[kNeighbours];
-  float squared[kNeighbours];
-  if (tree.nearest(map_point.cast<float>(), kNeighbours, indices, squared) < kNeighbours ||
-      squared[kNeighbours - 1] > kMaxNeighbourSquaredDistance) {
-    return std::nullopt;
-  }
+  if (!close_neighbours(tree, map_point, indices)) return std::nullopt;
   // n . x = -1 in the least-squares sense, then normalised: the plane n . x + d = 0.
   Eigen::Matrix<double, kNeighbours, 3> points;
   for (int k = 0; k < kNeighbours; ++k)
@@ -88,15 +88,6 @@ std::optional<PlaneMatch> plane_near(const PointKdTree& tree, const Cloud& map,
     }
   }
   return PlaneMatch{sensor_point, normal, offset};
-}
-
-ceres::Solver::Options solver_options(int iterations) {
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = iterations;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  return options;
 }
 
 // J^T J of the problem in the tangent space of (rotation, translation).
@@ -255,7 +246,7 @@ MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfac
     const double q_before[4] = {q[0], q[1], q[2], q[3]};
     const double t_before[3] = {t[0], t[1], t[2]};
     ceres::Solver::Summary summary;
-    ceres::Solve(solver_options(params_.solver_iterations), &problem, &summary);
+    ceres::Solve(registration_solver_options(params_.solver_iterations), &problem, &summary);
 
     // The step, in the tangent space, with its degenerate part removed.
     Eigen::Matrix<double, 6, 1> step;

@@ -38,16 +38,6 @@ CloudPoint moved_point(const CloudPoint& p, const double* pose) {
   return q;
 }
 
-ceres::Solver::Options solver_options(int iterations) {
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = iterations;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  options.minimizer_progress_to_stdout = false;
-  return options;
-}
-
 }  // namespace
 
 ScanToScanOdometry::ScanToScanOdometry(const OdometryParams& params) : params_(params) {}
@@ -142,7 +132,7 @@ void ScanToScanOdometry::solve(const Matches& matches, bool use_edges, bool use_
     problem.SetManifold(pose, new ceres::SubsetManifold(6, fixed_entries));
   }
   ceres::Solver::Summary summary;
-  ceres::Solve(solver_options(params_.solver_iterations), &problem, &summary);
+  ceres::Solve(registration_solver_options(params_.solver_iterations), &problem, &summary);
 }
 
 OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,

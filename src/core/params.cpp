@@ -337,8 +337,8 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
   for (const auto& entry : root) {
     const std::string name = entry.first.as<std::string>();
     static const std::set<std::string> known = {
-        "sensor",  "segmentation", "ambient_filter", "features",
-        "odometry", "mapping",     "loop_closure",   "clustering_benchmark"};
+        "sensor",   "segmentation", "ambient_filter", "features",
+        "odometry", "mapping",      "loop_closure",   "clustering_benchmark"};
     if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
   }
   validate(config.sensor, source);

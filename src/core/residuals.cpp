@@ -5,6 +5,16 @@
 
 namespace adaptive_lego_loam {
 
+ceres::Solver::Options registration_solver_options(int max_iterations) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = max_iterations;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  options.minimizer_progress_to_stdout = false;
+  return options;
+}
+
 Eigen::Isometry3d euler_vector_to_pose(const double* pose) {
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
   out.linear() = (Eigen::AngleAxisd(pose[2], Eigen::Vector3d::UnitZ()) *

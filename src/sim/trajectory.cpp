@@ -118,49 +118,6 @@ Eigen::Isometry3d SampledTrajectory::sensor_pose(double time) const {
   return pose * shake_.at(time);
 }
 
-std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw IoError(path + ": cannot open KITTI pose file");
-  std::vector<Eigen::Isometry3d> poses;
-  std::string line;
-  for (int number = 1; std::getline(file, line); ++number) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::istringstream fields(line);
-    Eigen::Matrix<double, 3, 4> matrix;
-    for (int k = 0; k < 12; ++k) {
-      if (!(fields >> matrix(k / 4, k % 4))) {
-        throw IoError(path + ":" + std::to_string(number) +
-                      ": expected 12 numbers (a 3x4 row-major pose)");
-      }
-    }
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.matrix().topRows<3>() = matrix;
-    // Re-orthonormalise: the file's rotations carry about 7 significant digits.
-    pose.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
-    poses.push_back(pose);
-  }
-  if (poses.empty()) throw IoError(path + ": no poses in file");
-  return poses;
-}
-
-std::vector<double> read_times(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw IoError(path + ": cannot open times file");
-  std::vector<double> times;
-  std::string line;
-  for (int number = 1; std::getline(file, line); ++number) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::istringstream fields(line);
-    double time = 0.0;
-    if (!(fields >> time) || (!times.empty() && !(time > times.back()))) {
-      throw IoError(path + ":" + std::to_string(number) +
-                    ": expected one time in seconds per line, increasing");
-    }
-    times.push_back(time);
-  }
-  return times;
-}
-
 std::vector<Eigen::Isometry3d> camera_poses_to_vehicle_axes(
     const std::vector<Eigen::Isometry3d>& camera_poses) {
   Eigen::Isometry3d camera_to_vehicle = Eigen::Isometry3d::Identity();
@@ -169,8 +126,10 @@ std::vector<Eigen::Isometry3d> camera_poses_to_vehicle_axes(
       0, -1, 0;                           // vehicle z = -camera y (up)
   std::vector<Eigen::Isometry3d> poses;
   poses.reserve(camera_poses.size());
-  for (const Eigen::Isometry3d& pose : camera_poses)
+  for (Eigen::Isometry3d pose : camera_poses) {
+    pose.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
     poses.push_back(camera_to_vehicle * pose * camera_to_vehicle.inverse());
+  }
   return poses;
 }
 

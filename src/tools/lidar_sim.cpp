@@ -1,7 +1,6 @@
 // Simulates LiDAR sequences with exact ground truth in the scenes the paper is about (urban,
 // highway, tunnel, vegetation, loop) and writes them as KITTI-style folders, optionally a bag.
 
-#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -17,6 +16,8 @@
 
 #include "adaptive_lego_loam/core/params.h"
 #include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/pose_files.h"
+#include "adaptive_lego_loam/io/progress.h"
 #include "adaptive_lego_loam/ros/cloud_conversions.h"
 #include "adaptive_lego_loam/sim/run_description.h"
 #include "adaptive_lego_loam/sim/scenario.h"
@@ -71,14 +72,21 @@ SceneRequest make_request(const Options& o, const SensorParams& sensor) {
   request.sensor_height = o.sensor_height;
   request.reach = sensor.max_range;
   if (!o.trajectory.empty()) {
-    request.trajectory_poses = camera_poses_to_vehicle_axes(read_kitti_poses(o.trajectory));
+    request.trajectory_poses =
+        camera_poses_to_vehicle_axes(adaptive_lego_loam::read_kitti_poses(o.trajectory));
     if (static_cast<std::size_t>(o.frames) > request.trajectory_poses.size()) {
       throw std::invalid_argument("--frames " + std::to_string(o.frames) + " exceeds the " +
                                   std::to_string(request.trajectory_poses.size()) + " poses of " +
                                   o.trajectory);
     }
     if (!o.trajectory_times.empty()) {
-      request.trajectory_times = read_times(o.trajectory_times);
+      request.trajectory_times = read_kitti_times(o.trajectory_times);
+      const auto& times = request.trajectory_times;
+      for (std::size_t i = 1; i < times.size(); ++i) {
+        if (!(times[i] > times[i - 1])) {
+          throw IoError(o.trajectory_times + ":" + std::to_string(i + 1) + ": times must increase");
+        }
+      }
       if (request.trajectory_times.size() != request.trajectory_poses.size()) {
         throw IoError(o.trajectory_times + ": " + std::to_string(request.trajectory_times.size()) +
                       " times for the " + std::to_string(request.trajectory_poses.size()) +
@@ -120,14 +128,6 @@ class BagOutput {
   rosbag::Bag bag_;
 };
 
-void show_progress(int done, int total) {
-  constexpr int kWidth = 40;
-  const int filled = total > 0 ? kWidth * done / total : kWidth;
-  std::fprintf(stderr, "\r[%s%s] %d/%d frames", std::string(filled, '#').c_str(),
-               std::string(kWidth - filled, ' ').c_str(), done, total);
-  if (done == total) std::fprintf(stderr, "\n");
-}
-
 void print_class_shares(const std::map<uint16_t, long>& counts, long total) {
   std::printf("lidar_sim: points per class:");
   for (const auto& [semantic, count] : counts) {
@@ -164,7 +164,7 @@ int run(Options& o) {
 
   std::unique_ptr<BagOutput> bag;
   if (!o.bag.empty()) bag = std::make_unique<BagOutput>(o.bag);
-  const bool progress = isatty(STDERR_FILENO);
+  ProgressBar progress("lidar_sim", o.frames);
   std::map<uint16_t, long> class_counts;
   long points = 0;
   const auto started = std::chrono::steady_clock::now();
@@ -177,8 +177,9 @@ int run(Options& o) {
     for (uint32_t label : simulated.labels)
       ++class_counts[static_cast<uint16_t>(label & 0xFFFFu)];
     points += static_cast<long>(simulated.labels.size());
-    if (progress) show_progress(frame + 1, o.frames);
+    progress.update(frame + 1);
   }
+  progress.finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const double cpu_seconds = static_cast<double>(std::clock() - cpu_started) / CLOCKS_PER_SEC;

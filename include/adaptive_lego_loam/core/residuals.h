@@ -97,6 +97,10 @@ struct QuaternionPointToPlane {
   }
 };
 
+// Options of the core's small registration problems (6 parameters, thousands of residuals):
+// dense QR, one thread (deterministic), silent.
+ceres::Solver::Options registration_solver_options(int max_iterations);
+
 // 6-vector [roll, pitch, yaw, x, y, z] <-> pose.
 Eigen::Isometry3d euler_vector_to_pose(const double* pose);
 void pose_to_euler_vector(const Eigen::Isometry3d& pose, double* out);

@@ -91,15 +91,12 @@ class SampledTrajectory : public Trajectory {
   Shake shake_;
 };
 
-// A KITTI pose file: one 3x4 row-major matrix per line. Throws IoError naming the file and line.
-std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path);
-// One time (s) per line, strictly increasing. Throws IoError naming the file and line.
-std::vector<double> read_times(const std::string& path);
-
 // KITTI ground truth is the left camera's pose with camera axes (x right, y down, z forward).
 // Returns the same motion with vehicle axes (x forward, y left, z up) in a world whose axes are
 // the first camera's turned the same way: P' = C P C^-1, C mapping camera to vehicle axes. The
 // camera's small offset from the LiDAR (KITTI's Tr) is not applied: the path is what matters.
+// Rotations are re-orthonormalised (the files carry about 7 significant digits). Read the file
+// with io/pose_files.h.
 std::vector<Eigen::Isometry3d> camera_poses_to_vehicle_axes(
     const std::vector<Eigen::Isometry3d>& camera_poses);
 
