@@ -5,6 +5,7 @@
 
 #include <adaptive_lego_loam/DegenerationState.h>
 #include <gtest/gtest.h>
+
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
@@ -16,6 +17,7 @@
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
+#include "run_command.h"
 
 #include <algorithm>
 #include <cmath>
@@ -347,15 +349,8 @@ TEST_F(Graph, TfChainMapOdomSensorGivesTheMappedPose) {
 
 // Runs a node with extra arguments (at most 20 s) and returns its exit status and output.
 std::pair<int, std::string> run_node_binary(const std::string& node, const std::string& arguments) {
-  const std::string command =
-      "timeout 20 " + std::string(BIN_DIR) + "/" + node + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[512];
-  while (std::fgets(buffer, sizeof(buffer), pipe))
-    output += buffer;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return adaptive_lego_loam::test::run_command("timeout 20 " + std::string(BIN_DIR) + "/" + node +
+                                               " " + arguments);
 }
 
 TEST(NodeStartUp, BadConfigStopsTheNodeWithTheLoadersMessage) {

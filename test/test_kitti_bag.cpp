@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "run_command.h"
+
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -208,14 +210,7 @@ TEST(KittiBag, FewerPosesThanScansIsAnErrorNamingThePoseFile) {
 namespace {
 
 std::pair<int, std::string> run_tool(const std::string& arguments) {
-  const std::string command = std::string(BIN_DIR) + "/kitti_to_bag " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[512];
-  while (std::fgets(buffer, sizeof(buffer), pipe))
-    output += buffer;
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return adaptive_lego_loam::test::run_command(std::string(BIN_DIR) + "/kitti_to_bag " + arguments);
 }
 
 }  // namespace

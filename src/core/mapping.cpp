@@ -185,20 +185,23 @@ MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfac
   for (int iteration = 0; iteration < params_.max_iterations; ++iteration) {
     lines.clear();
     planes.clear();
-    for (const CloudPoint& p : corners) {
-      if (map.corners()->size() < kNeighbours) break;
-      const Eigen::Vector3d sensor_point = p.getVector3fMap().cast<double>();
-      if (auto line = line_near(map.corner_tree(), *map.corners(), sensor_point,
-                                rotation * sensor_point + translation)) {
-        lines.push_back(*line);
+    // A map with fewer than kNeighbours points of a kind gives no match of that kind.
+    if (map.corners()->size() >= kNeighbours) {
+      for (const CloudPoint& p : corners) {
+        const Eigen::Vector3d sensor_point = p.getVector3fMap().cast<double>();
+        if (auto line = line_near(map.corner_tree(), *map.corners(), sensor_point,
+                                  rotation * sensor_point + translation)) {
+          lines.push_back(*line);
+        }
       }
     }
-    for (const CloudPoint& p : surfaces) {
-      if (map.surfaces()->size() < kNeighbours) break;
-      const Eigen::Vector3d sensor_point = p.getVector3fMap().cast<double>();
-      if (auto plane = plane_near(map.surface_tree(), *map.surfaces(), sensor_point,
-                                  rotation * sensor_point + translation)) {
-        planes.push_back(*plane);
+    if (map.surfaces()->size() >= kNeighbours) {
+      for (const CloudPoint& p : surfaces) {
+        const Eigen::Vector3d sensor_point = p.getVector3fMap().cast<double>();
+        if (auto plane = plane_near(map.surface_tree(), *map.surfaces(), sensor_point,
+                                    rotation * sensor_point + translation)) {
+          planes.push_back(*plane);
+        }
       }
     }
     result.edge_matches = static_cast<int>(lines.size());
