@@ -43,6 +43,17 @@ void LidarMapping::try_loop_closure(double stamp, MappingOutput& out) {
   ++loops_closed_;
 }
 
+bool LidarMapping::motion_is_plausible(const Eigen::Isometry3d& motion) const {
+  if (!last_mapped_motion_) return true;
+  const Eigen::Isometry3d change = last_mapped_motion_->inverse() * motion;
+  const bool translation_ok =
+      params_.max_motion_change <= 0.0 || change.translation().norm() <= params_.max_motion_change;
+  const bool rotation_ok =
+      params_.max_motion_change_deg <= 0.0 ||
+      Eigen::AngleAxisd(change.linear()).angle() <= params_.max_motion_change_deg * M_PI / 180.0;
+  return translation_ok && rotation_ok;
+}
+
 bool LidarMapping::needs_keyframe() const {
   if (keyframes_.empty()) return true;
   const Eigen::Isometry3d since = keyframes_.back().pose.inverse() * pose_;
@@ -74,7 +85,11 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
                                        ? last_odometry_pose_->inverse() * odometry_pose
                                        : Eigen::Isometry3d::Identity();
   last_odometry_pose_ = odometry_pose;
-  Eigen::Isometry3d pose = pose_ * motion;
+  // A large object moving along with the sensor (a truck overtaking) can drag the scan-to-scan
+  // estimate; scan-to-map then starts from the previous velocity instead.
+  out.motion_gated = !motion_is_plausible(motion);
+  Eigen::Isometry3d pose = pose_ * (out.motion_gated ? *last_mapped_motion_ : motion);
+  const Eigen::Isometry3d previous_pose = pose_;
   out.match = MapMatchResult();
   out.match.pose = pose;
 
@@ -90,6 +105,8 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
     out.times.add("mapping", watch.lap_ms());
   }
   pose_ = pose;
+  // The velocity exists once two scans have been mapped.
+  if (scans_ >= 1) last_mapped_motion_ = previous_pose.inverse() * pose_;
   fusion_.update_mapping(odometry_pose, pose_);
   out.pose = pose_;
   // A distorted first sweep would bend the map for as long as it stays in it.

@@ -238,6 +238,8 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.number("local_map_refresh_keyframes", m.local_map_refresh_keyframes, 1, 10000);
   in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
   in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
+  in.number("max_motion_change", m.max_motion_change, 0.0, 100.0);
+  in.number("max_motion_change_deg", m.max_motion_change_deg, 0.0, 180.0);
   in.reject_unknown_keys();
 }
 

@@ -51,6 +51,7 @@ const FrameResult& Pipeline::process(const Scan& scan) {
   result_.mapping = mapping_out_.match;
   result_.pose = mapping_out_.pose;
   result_.keyframe = mapping_out_.keyframe;
+  result_.motion_gated = mapping_out_.motion_gated;
   result_.loop = mapping_out_.loop;
   result_.loop_closed = mapping_out_.loop && mapping_out_.loop->accepted();
   return result_;

@@ -135,7 +135,7 @@ int run(const Options& options) {
                    : ("fixed beta0 " + std::to_string(config.ambient.fixed_beta0_deg)).c_str());
   ProgressBar progress("run_sequence", total);
   Stopwatch wall;
-  int frames = 0, empty_scans = 0;
+  int frames = 0, empty_scans = 0, motion_gated_scans = 0;
   std::string failure;
   try {
     while (options.max_frames < 0 || frames < options.max_frames) {
@@ -143,6 +143,7 @@ int run(const Options& options) {
       if (!scan) break;
       const FrameResult& result = pipeline.process(*scan);
       empty_scans += !result.valid_scan;
+      motion_gated_scans += result.motion_gated;
       outputs.add(result, pipeline.filter_result());
       progress.update(++frames);
     }
@@ -163,6 +164,7 @@ int run(const Options& options) {
   summary["scans_without_valid_points"] = empty_scans;
   summary["keyframes"] = pipeline.keyframes().size();
   summary["loops_closed"] = pipeline.mapping().loops_closed();
+  summary["motion_gated_scans"] = motion_gated_scans;
   summary["wall_time_s"] = wall_s;
   summary["frames_per_second"] = wall_s > 0 ? frames / wall_s : 0.0;
   summary["frame_ms"] = statistics(outputs.total_ms);

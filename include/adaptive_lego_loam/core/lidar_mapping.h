@@ -32,6 +32,7 @@ struct MappingOutput {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // sensor in the map frame
   MapMatchResult match;
   bool keyframe = false;
+  bool motion_gated = false;  // the odometry's motion was implausible: the guess kept the velocity
   std::optional<LoopDetection> loop;  // when a loop closure was attempted on this scan
   StageTimes times;
 };
@@ -52,6 +53,7 @@ class LidarMapping {
   std::vector<Eigen::Isometry3d> trajectory() const;
 
  private:
+  bool motion_is_plausible(const Eigen::Isometry3d& motion) const;
   bool needs_keyframe() const;
   void add_keyframe(const FeatureSet& features, double stamp);
   // With a new keyframe that has a loop candidate, ICP at most once a second of data (LeGO-LOAM's
@@ -70,6 +72,7 @@ class LidarMapping {
   int map_version_ = 0;
   int scans_ = 0;
   std::optional<Eigen::Isometry3d> last_odometry_pose_;
+  std::optional<Eigen::Isometry3d> last_mapped_motion_;
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
   // Per scan: the keyframe it hangs from and its pose relative to that keyframe (-1 and the pose
   // itself before the first keyframe).

@@ -127,6 +127,11 @@ struct MappingParams {
   // Weight of a prior pulling the translation along the ambient filter's weak direction toward
   // the odometry's prediction, times mu; 0 turns it off.
   double weak_direction_prior = 0.0;
+  // The guess for scan-to-map: the odometry's motion, unless it differs from the previous scan's
+  // mapped motion by more than this (m per scan) or max_motion_change_deg; then that motion
+  // (constant velocity). 0 = off. A vehicle cannot change its speed by 0.3 m per scan at 10 Hz.
+  double max_motion_change = 0.0;
+  double max_motion_change_deg = 0.0;
 };
 
 // Robust loss on a pose-graph edge's whitened residual norm |r| (in sigmas). kHuber: quadratic up

@@ -22,6 +22,7 @@ struct FrameResult {
   bool valid_scan = true;  // false when the scan had no valid point (pose predicted)
   bool keyframe = false;
   bool loop_closed = false;
+  bool motion_gated = false;  // scan-to-map started from the previous velocity (see MappingParams)
   std::optional<LoopDetection> loop;  // when loop closure was attempted on this scan
   bool deskewed_by_time_field = false;
   OdometryResult odometry;
