@@ -63,7 +63,8 @@ struct PointKdTree::Index {
     build(0, static_cast<uint32_t>(entries.size()));
   }
 
-  // Splits at the median of the axis of largest extent.
+  // Splits at the middle of the axis of largest extent (one partition pass; a median split
+  // through nth_element took most of the build).
   uint32_t build(uint32_t begin, uint32_t end) {
     const uint32_t node = static_cast<uint32_t>(nodes.size());
     nodes.push_back({0.f, 0.f, begin, end, kLeaf});
@@ -81,14 +82,18 @@ struct PointKdTree::Index {
     for (uint32_t a = 1; a < 3; ++a) {
       if (high[a] - low[a] > high[axis] - low[axis]) axis = a;
     }
-    const uint32_t middle = begin + (end - begin) / 2;
-    std::nth_element(
-        entries.begin() + begin, entries.begin() + middle, entries.begin() + end,
-        [axis](const Entry& a, const Entry& b) { return a.position[axis] < b.position[axis]; });
-    float left_max = entries[begin].position[axis];
-    for (uint32_t i = begin + 1; i < middle; ++i)
+    const float split = 0.5f * (low[axis] + high[axis]);
+    // Both sides get a point (the lowest and the highest) unless all points coincide.
+    if (!(low[axis] < split && split < high[axis])) return node;
+    const auto middle_entry =
+        std::partition(entries.begin() + begin, entries.begin() + end,
+                       [axis, split](const Entry& e) { return e.position[axis] < split; });
+    const uint32_t middle = static_cast<uint32_t>(middle_entry - entries.begin());
+    float left_max = low[axis], right_min = high[axis];
+    for (uint32_t i = begin; i < middle; ++i)
       left_max = std::max(left_max, entries[i].position[axis]);
-    const float right_min = entries[middle].position[axis];
+    for (uint32_t i = middle; i < end; ++i)
+      right_min = std::min(right_min, entries[i].position[axis]);
     build(begin, middle);
     const uint32_t right = build(middle, end);
     nodes[node] = {left_max, right_min, right, 0, axis};

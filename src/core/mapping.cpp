@@ -174,7 +174,97 @@ CloudPtr voxel_filter(const Cloud& cloud, double leaf) {
   return out;
 }
 
-LocalMap::LocalMap(const MappingParams& params) : params_(params) {}
+uint64_t VoxelSums::key_of(const CloudPoint& p) const {
+  // PCL's voxel index, 21 bits per axis (+-200 km at 0.2 m).
+  auto cell = [this](float coordinate) {
+    const int64_t index = static_cast<int64_t>(std::floor(coordinate * inverse_leaf_));
+    return static_cast<uint64_t>(index + (1 << 20)) & 0x1FFFFF;
+  };
+  return cell(p.x) | cell(p.y) << 21 | cell(p.z) << 42;
+}
+
+std::size_t VoxelSums::home(uint64_t key) const {
+  // Fibonacci hashing: the top bits of key * 2^64 / phi.
+  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+}
+
+VoxelSums::Slot& VoxelSums::find_or_insert(uint64_t key) {
+  if (2 * (used_ + 1) > slots_.size()) grow();
+  const std::size_t mask = slots_.size() - 1;
+  std::size_t i = home(key);
+  while (slots_[i].key != key && slots_[i].key != kEmpty)
+    i = (i + 1) & mask;
+  if (slots_[i].key == kEmpty) {
+    slots_[i].key = key;
+    ++used_;
+  }
+  return slots_[i];
+}
+
+// Linear probing's backward-shift deletion: later entries of the probe run move up, so that no
+// lookup stops early at the hole.
+void VoxelSums::erase(std::size_t hole) {
+  const std::size_t mask = slots_.size() - 1;
+  slots_[hole] = Slot();
+  --used_;
+  for (std::size_t next = (hole + 1) & mask; slots_[next].key != kEmpty; next = (next + 1) & mask) {
+    const std::size_t wanted = home(slots_[next].key);
+    // The entry may fill the hole when its home is not cyclically in (hole, next].
+    const bool stays =
+        hole < next ? (wanted > hole && wanted <= next) : (wanted > hole || wanted <= next);
+    if (stays) continue;
+    slots_[hole] = slots_[next];
+    slots_[next] = Slot();
+    hole = next;
+  }
+}
+
+void VoxelSums::grow() {
+  std::vector<Slot> old(std::max<std::size_t>(1024, 2 * slots_.size()));
+  old.swap(slots_);
+  used_ = 0;
+  shift_ = 64;
+  for (std::size_t size = slots_.size(); size > 1; size /= 2)
+    --shift_;
+  for (const Slot& slot : old) {
+    if (slot.key != kEmpty) find_or_insert(slot.key) = slot;
+  }
+}
+
+void VoxelSums::clear() {
+  slots_.clear();
+  used_ = 0;
+}
+
+void VoxelSums::accumulate(const Cloud& points, int sign) {
+  for (const CloudPoint& p : points) {
+    Slot& sum = find_or_insert(key_of(p));
+    sum.x += sign * double(p.x);
+    sum.y += sign * double(p.y);
+    sum.z += sign * double(p.z);
+    sum.intensity += sign * double(p.intensity);
+    sum.count += sign;
+    if (sum.count == 0) erase(&sum - slots_.data());
+  }
+}
+
+CloudPtr VoxelSums::centroids() const {
+  CloudPtr out(new Cloud);
+  out->reserve(used_);
+  for (const Slot& sum : slots_) {
+    if (sum.key == kEmpty) continue;
+    CloudPoint p;
+    p.x = static_cast<float>(sum.x / sum.count);
+    p.y = static_cast<float>(sum.y / sum.count);
+    p.z = static_cast<float>(sum.z / sum.count);
+    p.intensity = static_cast<float>(sum.intensity / sum.count);
+    out->push_back(p);
+  }
+  return out;
+}
+
+LocalMap::LocalMap(const MappingParams& params)
+    : params_(params), corner_sums_(params.corner_voxel), surface_sums_(params.surface_voxel) {}
 
 std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
                                   const Eigen::Vector3d& position) const {
@@ -192,8 +282,8 @@ std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
 bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position,
                       int version) {
   std::vector<int> chosen = select(keyframes, position);
-  // Rebuilding (voxel filter and KD-trees) costs more than matching: only when keyframe poses
-  // changed or enough of the chosen keyframes are missing from the built map.
+  // Rebuilding the KD-trees costs more than matching: only when keyframe poses changed or enough
+  // of the chosen keyframes are missing from the map.
   int missing = 0;
   for (int index : chosen) {
     missing += !std::binary_search(selected_.begin(), selected_.end(), index);
@@ -201,19 +291,40 @@ bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vecto
   if (version == version_ && missing < std::max(1, params_.local_map_refresh_keyframes)) {
     return false;
   }
+  if (version != version_) {
+    corner_sums_.clear();
+    surface_sums_.clear();
+    placed_.clear();
+    selected_.clear();
+  }
+  for (int index : selected_) {
+    if (!std::binary_search(chosen.begin(), chosen.end(), index)) take_out(index);
+  }
+  for (int index : chosen) {
+    if (!std::binary_search(selected_.begin(), selected_.end(), index)) put_in(keyframes[index]);
+  }
   selected_ = std::move(chosen);
   version_ = version;
-  Cloud corners, surfaces;
-  for (int index : selected_) {
-    const Keyframe& keyframe = keyframes[index];
-    corners += *transform_cloud(*keyframe.corners, keyframe.pose);
-    surfaces += *transform_cloud(*keyframe.surfaces, keyframe.pose);
-  }
-  corners_ = voxel_filter(corners, params_.corner_voxel);
-  surfaces_ = voxel_filter(surfaces, params_.surface_voxel);
+  corners_ = corner_sums_.centroids();
+  surfaces_ = surface_sums_.centroids();
   corner_tree_.build(corners_);
   surface_tree_.build(surfaces_);
   return true;
+}
+
+void LocalMap::put_in(const Keyframe& keyframe) {
+  Placed placed{transform_cloud(*keyframe.corners, keyframe.pose),
+                transform_cloud(*keyframe.surfaces, keyframe.pose)};
+  corner_sums_.add(*placed.corners);
+  surface_sums_.add(*placed.surfaces);
+  placed_[keyframe.index] = std::move(placed);
+}
+
+void LocalMap::take_out(int keyframe) {
+  const auto placed = placed_.find(keyframe);
+  corner_sums_.remove(*placed->second.corners);
+  surface_sums_.remove(*placed->second.surfaces);
+  placed_.erase(placed);
 }
 
 ScanToMapMatcher::ScanToMapMatcher(const MappingParams& params) : params_(params) {}

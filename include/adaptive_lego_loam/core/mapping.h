@@ -5,6 +5,8 @@
 // test) receive no update.
 
 #include <Eigen/Geometry>
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -15,12 +17,47 @@
 
 namespace adaptive_lego_loam {
 
+// Sums of the points falling in each voxel of a grid anchored at the origin: their centroids are
+// the voxel filter of every point added and not removed since (PCL's VoxelGrid of their union, up
+// to rounding), without filtering them all again when a few change. An open-addressing table:
+// one probe per point and a linear walk for the centroids.
+class VoxelSums {
+ public:
+  explicit VoxelSums(double leaf) : inverse_leaf_(1.0 / leaf) {}
+  void add(const Cloud& points) { accumulate(points, 1); }
+  // `points` must have been added before, unchanged.
+  void remove(const Cloud& points) { accumulate(points, -1); }
+  void clear();
+  CloudPtr centroids() const;
+
+ private:
+  struct Slot {
+    uint64_t key = kEmpty;
+    int count = 0;
+    double x = 0.0, y = 0.0, z = 0.0, intensity = 0.0;
+  };
+  static constexpr uint64_t kEmpty = ~uint64_t{0};
+
+  void accumulate(const Cloud& points, int sign);
+  uint64_t key_of(const CloudPoint& p) const;
+  std::size_t home(uint64_t key) const;
+  Slot& find_or_insert(uint64_t key);
+  void erase(std::size_t slot);
+  void grow();
+
+  double inverse_leaf_;
+  std::vector<Slot> slots_;  // a power of two of them, at most half used
+  std::size_t used_ = 0;
+  int shift_ = 64;  // home slot: the top log2(slots) bits of the hash
+};
+
 // The local map: the chosen keyframes' features in the map frame, voxel-filtered.
 class LocalMap {
  public:
   explicit LocalMap(const MappingParams& params);
-  // Rebuilds from the keyframes near `position` when that set (or `version`, bumped when
-  // keyframe poses change) differs from the last build. Returns whether it rebuilt.
+  // Updates from the keyframes near `position` when that set (or `version`, bumped when
+  // keyframe poses change) differs from the last update: keyframes that left the set are taken
+  // out, new ones put in (everything again after a version change). Returns whether it changed.
   bool update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position, int version);
   const CloudPtr& corners() const { return corners_; }
   const CloudPtr& surfaces() const { return surfaces_; }
@@ -29,11 +66,20 @@ class LocalMap {
   bool empty() const { return corners_->empty() && surfaces_->empty(); }
 
  private:
+  // A keyframe's features as they were put in the map (to take them out again).
+  struct Placed {
+    CloudPtr corners, surfaces;
+  };
   std::vector<int> select(const std::vector<Keyframe>& keyframes,
                           const Eigen::Vector3d& position) const;
+  void put_in(const Keyframe& keyframe);
+  void take_out(int keyframe);
+
   MappingParams params_;
   std::vector<int> selected_;
   int version_ = -1;
+  VoxelSums corner_sums_, surface_sums_;
+  std::map<int, Placed> placed_;
   CloudPtr corners_{new Cloud}, surfaces_{new Cloud};
   PointKdTree corner_tree_, surface_tree_;
 };
