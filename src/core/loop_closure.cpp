@@ -53,6 +53,19 @@ CloudPtr neighbourhood_map(const std::vector<Keyframe>& keyframes, int matched, 
   return filtered;
 }
 
+// Every n-th point of `cloud`, at most `most` of them. ICP's time grows with its source; a
+// uniform sample keeps the fitness (a mean over the source) comparable, where a voxel filter's
+// centroids would raise it.
+CloudPtr sample(const CloudPtr& cloud, int most) {
+  const std::size_t step = (cloud->size() + most - 1) / most;
+  if (step <= 1) return cloud;
+  CloudPtr sampled(new Cloud);
+  sampled->reserve(cloud->size() / step + 1);
+  for (std::size_t i = 0; i < cloud->size(); i += step)
+    sampled->push_back((*cloud)[i]);
+  return sampled;
+}
+
 // Runs ICP of `source` onto `target` and fills status, fitness and correction.
 void align(const CloudPtr& source, const CloudPtr& target, const LoopClosureParams& params,
            LoopDetection& loop) {
@@ -136,7 +149,7 @@ LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_in
     loop.time_ms = stopwatch.elapsed_ms();
     return loop;
   }
-  const CloudPtr source = cloud_in_map(keyframes[current_index]);
+  const CloudPtr source = sample(cloud_in_map(keyframes[current_index]), params.icp_max_points);
   const CloudPtr target = neighbourhood_map(keyframes, loop.matched_index, current_index, params);
   if (source->size() < kMinIcpPoints || target->size() < kMinIcpPoints) {
     loop.status = LoopStatus::kTooFewPoints;
