@@ -1,6 +1,5 @@
 #include "adaptive_lego_loam/core/loop_closure.h"
 
-#include <pcl/filters/voxel_grid.h>
 #include <pcl/registration/icp.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <string>
 
 #include "adaptive_lego_loam/core/timing.h"
+#include "adaptive_lego_loam/core/voxel_filter.h"
 
 namespace adaptive_lego_loam {
 namespace {
@@ -43,14 +43,7 @@ CloudPtr neighbourhood_map(const std::vector<Keyframe>& keyframes, int matched, 
     if (i == current || !old_enough(keyframes[i], keyframes[current], params)) continue;
     *map += *cloud_in_map(keyframes[i]);
   }
-  if (params.voxel_size <= 0.0 || map->empty()) return map;
-  pcl::VoxelGrid<CloudPoint> voxel;
-  const float leaf = static_cast<float>(params.voxel_size);
-  voxel.setLeafSize(leaf, leaf, leaf);
-  voxel.setInputCloud(map);
-  CloudPtr filtered(new Cloud);
-  voxel.filter(*filtered);
-  return filtered;
+  return voxel_filter(*map, params.voxel_size);
 }
 
 // Every n-th point of `cloud`, at most `most` of them. ICP's time grows with its source; a
