@@ -7,7 +7,7 @@
 namespace adaptive_lego_loam {
 namespace {
 
-constexpr uint32_t kLeafSize = 8;
+constexpr uint32_t kLeafSize = 16;
 
 struct Entry {
   float position[3];
