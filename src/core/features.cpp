@@ -1,9 +1,9 @@
 #include "adaptive_lego_loam/core/features.h"
 
-#include <pcl/filters/voxel_grid.h>
-
 #include <algorithm>
 #include <cmath>
+
+#include "adaptive_lego_loam/core/voxel_filter.h"
 
 namespace adaptive_lego_loam {
 namespace {
@@ -129,17 +129,7 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
       if (label_[i] <= 0) row_less_flat_.push_back(to_cloud_point(points[i], row));
     }
   }
-  if (params_.less_flat_voxel > 0.0) {
-    Cloud filtered;
-    pcl::VoxelGrid<CloudPoint> voxel;
-    const float leaf = static_cast<float>(params_.less_flat_voxel);
-    voxel.setLeafSize(leaf, leaf, leaf);
-    voxel.setInputCloud(row_less_flat_.makeShared());
-    voxel.filter(filtered);
-    *out.less_flat += filtered;
-  } else {
-    *out.less_flat += row_less_flat_;
-  }
+  *out.less_flat += *voxel_filter(row_less_flat_, params_.less_flat_voxel);
 }
 
 void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,

@@ -1,6 +1,5 @@
 #include "adaptive_lego_loam/core/loop_closure.h"
 
-#include <pcl/filters/voxel_grid.h>
 #include <pcl/registration/icp.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <string>
 
 #include "adaptive_lego_loam/core/timing.h"
+#include "adaptive_lego_loam/core/voxel_filter.h"
 
 namespace adaptive_lego_loam {
 namespace {
@@ -43,14 +43,20 @@ CloudPtr neighbourhood_map(const std::vector<Keyframe>& keyframes, int matched, 
     if (i == current || !old_enough(keyframes[i], keyframes[current], params)) continue;
     *map += *cloud_in_map(keyframes[i]);
   }
-  if (params.voxel_size <= 0.0 || map->empty()) return map;
-  pcl::VoxelGrid<CloudPoint> voxel;
-  const float leaf = static_cast<float>(params.voxel_size);
-  voxel.setLeafSize(leaf, leaf, leaf);
-  voxel.setInputCloud(map);
-  CloudPtr filtered(new Cloud);
-  voxel.filter(*filtered);
-  return filtered;
+  return voxel_filter(*map, params.voxel_size);
+}
+
+// Every n-th point of `cloud`, at most `most` of them. ICP's time grows with its source; a
+// uniform sample keeps the fitness (a mean over the source) comparable, where a voxel filter's
+// centroids would raise it.
+CloudPtr sample(const CloudPtr& cloud, int most) {
+  const std::size_t step = (cloud->size() + most - 1) / most;
+  if (step <= 1) return cloud;
+  CloudPtr sampled(new Cloud);
+  sampled->reserve(cloud->size() / step + 1);
+  for (std::size_t i = 0; i < cloud->size(); i += step)
+    sampled->push_back((*cloud)[i]);
+  return sampled;
 }
 
 // Runs ICP of `source` onto `target` and fills status, fitness and correction.
@@ -136,7 +142,7 @@ LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_in
     loop.time_ms = stopwatch.elapsed_ms();
     return loop;
   }
-  const CloudPtr source = cloud_in_map(keyframes[current_index]);
+  const CloudPtr source = sample(cloud_in_map(keyframes[current_index]), params.icp_max_points);
   const CloudPtr target = neighbourhood_map(keyframes, loop.matched_index, current_index, params);
   if (source->size() < kMinIcpPoints || target->size() < kMinIcpPoints) {
     loop.status = LoopStatus::kTooFewPoints;

@@ -1,10 +1,14 @@
 #include "adaptive_lego_loam/core/mapping.h"
 
-#include <pcl/filters/voxel_grid.h>
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/manifold.h>
+#include <ceres/problem.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "adaptive_lego_loam/core/residuals.h"
 
@@ -12,17 +16,9 @@ namespace adaptive_lego_loam {
 namespace {
 
 constexpr int kNeighbours = 5;
-constexpr float kMaxNeighbourSquaredDistance = 1.0f;  // m^2, as LOAM
-constexpr double kMaxPlaneDeviation = 0.2;            // m
+constexpr float kMaxNeighbourDistance = 1.0f;  // m, as LOAM
+constexpr double kMaxPlaneDeviation = 0.2;     // m
 constexpr int kMinMatches = 20;
-
-struct LineMatch {
-  Eigen::Vector3d point, a, b;
-};
-struct PlaneMatch {
-  Eigen::Vector3d point, normal;
-  double offset;
-};
 
 // Pulls the translation along `direction` toward `target`.
 struct DirectionPrior {
@@ -36,50 +32,36 @@ struct DirectionPrior {
   }
 };
 
-// The kNeighbours nearest map points, when all lie within LOAM's 1 m.
-bool close_neighbours(const PointKdTree& tree, const Eigen::Vector3d& map_point,
-                      uint32_t* indices) {
-  float squared[kNeighbours];
-  return tree.nearest(map_point.cast<float>(), kNeighbours, indices, squared) == kNeighbours &&
-         squared[kNeighbours - 1] <= kMaxNeighbourSquaredDistance;
-}
-
-std::optional<LineMatch> line_near(const PointKdTree& tree, const Cloud& map,
-                                   const Eigen::Vector3d& sensor_point,
-                                   const Eigen::Vector3d& map_point) {
-  uint32_t indices[kNeighbours];
-  if (!close_neighbours(tree, map_point, indices)) return std::nullopt;
+// A line through the neighbours when one spread dominates.
+std::optional<LineMatch> fit_line(const Cloud& map, const uint32_t* indices,
+                                  const Eigen::Vector3d& sensor_point) {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (int index : indices)
-    centroid += map[index].getVector3fMap().cast<double>();
+  for (int k = 0; k < kNeighbours; ++k)
+    centroid += map[indices[k]].getVector3fMap().cast<double>();
   centroid /= kNeighbours;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (uint32_t index : indices) {
-    const Eigen::Vector3d d = map[index].getVector3fMap().cast<double>() - centroid;
+  for (int k = 0; k < kNeighbours; ++k) {
+    const Eigen::Vector3d d = map[indices[k]].getVector3fMap().cast<double>() - centroid;
     covariance += d * d.transpose();
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
   solver.computeDirect(covariance / kNeighbours);
-  // A line: one dominant spread.
   if (solver.eigenvalues()(2) < 3.0 * solver.eigenvalues()(1)) return std::nullopt;
-  const Eigen::Vector3d direction = solver.eigenvectors().col(2);
-  return LineMatch{sensor_point, centroid + 0.1 * direction, centroid - 0.1 * direction};
+  return LineMatch{sensor_point, centroid, solver.eigenvectors().col(2)};
 }
 
-std::optional<PlaneMatch> plane_near(const PointKdTree& tree, const Cloud& map,
-                                     const Eigen::Vector3d& sensor_point,
-                                     const Eigen::Vector3d& map_point) {
-  uint32_t indices[kNeighbours];
-  if (!close_neighbours(tree, map_point, indices)) return std::nullopt;
-  // n . x = -1 in the least-squares sense, then normalised: the plane n . x + d = 0.
+// A plane through the neighbours when none lies more than kMaxPlaneDeviation off it.
+std::optional<PlaneMatch> fit_plane(const Cloud& map, const uint32_t* indices,
+                                    const Eigen::Vector3d& sensor_point) {
+  // n . x = -1 in the least-squares sense, then normalised: the plane n . x + d = 0. By the
+  // normal equations (3 x 3; a QR of the 5 x 3 system took a tenth of the mapping).
   Eigen::Matrix<double, kNeighbours, 3> points;
   for (int k = 0; k < kNeighbours; ++k)
     points.row(k) = map[indices[k]].getVector3fMap().cast<double>();
-  const Eigen::Matrix<double, kNeighbours, 1> minus_ones =
-      -Eigen::Matrix<double, kNeighbours, 1>::Ones();
-  Eigen::Vector3d normal = points.colPivHouseholderQr().solve(minus_ones);
+  const Eigen::Matrix3d gram = points.transpose() * points;
+  Eigen::Vector3d normal = gram.ldlt().solve(-points.colwise().sum().transpose());
   const double norm = normal.norm();
-  if (!(norm > 1e-9)) return std::nullopt;
+  if (!(norm > 1e-9) || !std::isfinite(norm)) return std::nullopt;
   normal /= norm;
   const double offset = 1.0 / norm;
   for (int k = 0; k < kNeighbours; ++k) {
@@ -89,6 +71,73 @@ std::optional<PlaneMatch> plane_near(const PointKdTree& tree, const Cloud& map,
   }
   return PlaneMatch{sensor_point, normal, offset};
 }
+
+// Each scan point's correspondence of one kind (a line on the map's corners or a plane on its
+// surfaces), fitted to its kNeighbours nearest map points when all lie within LOAM's 1 m. Later
+// iterations search again only for points that moved enough to change that: the distance to a
+// query's k-th nearest point changes by at most the distance the query moved, so with the 5th
+// and 6th nearest distances kept, a point that moved by m keeps its neighbours while
+// 5th + 2 m < 6th, its acceptance while 5th + m <= 1 m, and its rejection while
+// 5th - m > 1 m. The result is the same as searching again every time.
+template <class Match>
+class CorrespondenceCache {
+ public:
+  using Fit = std::optional<Match> (*)(const Cloud&, const uint32_t*, const Eigen::Vector3d&);
+
+  CorrespondenceCache(const Cloud& scan, const PointKdTree& tree, const Cloud& map, Fit fit)
+      : scan_(scan), tree_(tree), map_(map), fit_(fit), entries_(scan.size()) {}
+
+  // The correspondences with the scan placed by (rotation, translation), in scan order.
+  void update(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation,
+              std::vector<Match>& out) {
+    out.clear();
+    for (std::size_t i = 0; i < scan_.size(); ++i) {
+      const Eigen::Vector3d sensor_point = scan_[i].getVector3fMap().cast<double>();
+      const Eigen::Vector3f at = (rotation * sensor_point + translation).cast<float>();
+      Entry& entry = entries_[i];
+      if (!entry.searched || !still_valid(entry, at)) search(at, sensor_point, entry);
+      if (entry.match) out.push_back(*entry.match);
+    }
+  }
+
+ private:
+  // Searched a little beyond 1 m, so that a rejected point need not be searched again at once.
+  static constexpr float kSearchRadius = 1.1f;
+
+  struct Entry {
+    bool searched = false;
+    Eigen::Vector3f searched_at;
+    float fifth = 0.f;  // distance to the 5th nearest map point (kSearchRadius: none that near)
+    float sixth = 0.f;  // ... to the 6th (kSearchRadius: none that near)
+    std::optional<Match> match;
+  };
+
+  static bool still_valid(const Entry& entry, const Eigen::Vector3f& at) {
+    const float moved = (at - entry.searched_at).norm();
+    if (entry.fifth - moved > kMaxNeighbourDistance) return true;
+    return entry.fifth + moved <= kMaxNeighbourDistance && entry.fifth + 2.f * moved < entry.sixth;
+  }
+
+  void search(const Eigen::Vector3f& at, const Eigen::Vector3d& sensor_point, Entry& entry) const {
+    uint32_t indices[kNeighbours + 1];
+    float squared[kNeighbours + 1];
+    const int found =
+        tree_.nearest(at, kNeighbours + 1, indices, squared, kSearchRadius * kSearchRadius);
+    entry.searched = true;
+    entry.searched_at = at;
+    entry.fifth = found >= kNeighbours ? std::sqrt(squared[kNeighbours - 1]) : kSearchRadius;
+    entry.sixth = found > kNeighbours ? std::sqrt(squared[kNeighbours]) : kSearchRadius;
+    const bool close = found >= kNeighbours &&
+                       squared[kNeighbours - 1] <= kMaxNeighbourDistance * kMaxNeighbourDistance;
+    entry.match = close ? fit_(map_, indices, sensor_point) : std::nullopt;
+  }
+
+  const Cloud& scan_;
+  const PointKdTree& tree_;
+  const Cloud& map_;
+  Fit fit_;
+  std::vector<Entry> entries_;
+};
 
 // J^T J of the problem in the tangent space of (rotation, translation).
 Eigen::Matrix<double, 6, 6> normal_matrix(ceres::Problem& problem, double* rotation,
@@ -111,21 +160,8 @@ Eigen::Matrix<double, 6, 6> normal_matrix(ceres::Problem& problem, double* rotat
 
 }  // namespace
 
-CloudPtr voxel_filter(const Cloud& cloud, double leaf) {
-  CloudPtr out(new Cloud);
-  if (leaf <= 0.0 || cloud.empty()) {
-    *out = cloud;
-    return out;
-  }
-  pcl::VoxelGrid<CloudPoint> voxel;
-  const float size = static_cast<float>(leaf);
-  voxel.setLeafSize(size, size, size);
-  voxel.setInputCloud(cloud.makeShared());
-  voxel.filter(*out);
-  return out;
-}
-
-LocalMap::LocalMap(const MappingParams& params) : params_(params) {}
+LocalMap::LocalMap(const MappingParams& params)
+    : params_(params), corner_sums_(params.corner_voxel), surface_sums_(params.surface_voxel) {}
 
 std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
                                   const Eigen::Vector3d& position) const {
@@ -143,8 +179,8 @@ std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
 bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position,
                       int version) {
   std::vector<int> chosen = select(keyframes, position);
-  // Rebuilding (voxel filter and KD-trees) costs more than matching: only when keyframe poses
-  // changed or enough of the chosen keyframes are missing from the built map.
+  // Rebuilding the KD-trees costs more than matching: only when keyframe poses changed or enough
+  // of the chosen keyframes are missing from the map.
   int missing = 0;
   for (int index : chosen) {
     missing += !std::binary_search(selected_.begin(), selected_.end(), index);
@@ -152,19 +188,40 @@ bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vecto
   if (version == version_ && missing < std::max(1, params_.local_map_refresh_keyframes)) {
     return false;
   }
+  if (version != version_) {
+    corner_sums_.clear();
+    surface_sums_.clear();
+    placed_.clear();
+    selected_.clear();
+  }
+  for (int index : selected_) {
+    if (!std::binary_search(chosen.begin(), chosen.end(), index)) take_out(index);
+  }
+  for (int index : chosen) {
+    if (!std::binary_search(selected_.begin(), selected_.end(), index)) put_in(keyframes[index]);
+  }
   selected_ = std::move(chosen);
   version_ = version;
-  Cloud corners, surfaces;
-  for (int index : selected_) {
-    const Keyframe& keyframe = keyframes[index];
-    corners += *transform_cloud(*keyframe.corners, keyframe.pose);
-    surfaces += *transform_cloud(*keyframe.surfaces, keyframe.pose);
-  }
-  corners_ = voxel_filter(corners, params_.corner_voxel);
-  surfaces_ = voxel_filter(surfaces, params_.surface_voxel);
+  corners_ = corner_sums_.centroids();
+  surfaces_ = surface_sums_.centroids();
   corner_tree_.build(corners_);
   surface_tree_.build(surfaces_);
   return true;
+}
+
+void LocalMap::put_in(const Keyframe& keyframe) {
+  Placed placed{transform_cloud(*keyframe.corners, keyframe.pose),
+                transform_cloud(*keyframe.surfaces, keyframe.pose)};
+  corner_sums_.add(*placed.corners);
+  surface_sums_.add(*placed.surfaces);
+  placed_[keyframe.index] = std::move(placed);
+}
+
+void LocalMap::take_out(int keyframe) {
+  const auto placed = placed_.find(keyframe);
+  corner_sums_.remove(*placed->second.corners);
+  surface_sums_.remove(*placed->second.surfaces);
+  placed_.erase(placed);
 }
 
 ScanToMapMatcher::ScanToMapMatcher(const MappingParams& params) : params_(params) {}
@@ -178,57 +235,34 @@ MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfac
   Eigen::Quaterniond rotation(guess.linear());
   Eigen::Vector3d translation = guess.translation();
   Eigen::Matrix<double, 6, 6> keep = Eigen::Matrix<double, 6, 6>::Identity();
-  std::vector<LineMatch> lines;
-  std::vector<PlaneMatch> planes;
+  Correspondences matches;
   ceres::EigenQuaternionManifold quaternion_manifold;
+  CorrespondenceCache<LineMatch> lines(corners, map.corner_tree(), *map.corners(), fit_line);
+  CorrespondenceCache<PlaneMatch> planes(surfaces, map.surface_tree(), *map.surfaces(), fit_plane);
 
   for (int iteration = 0; iteration < params_.max_iterations; ++iteration) {
-    lines.clear();
-    planes.clear();
-    // A map with fewer than kNeighbours points of a kind gives no match of that kind.
-    if (map.corners()->size() >= kNeighbours) {
-      for (const CloudPoint& p : corners) {
-        const Eigen::Vector3d sensor_point = p.getVector3fMap().cast<double>();
-        if (auto line = line_near(map.corner_tree(), *map.corners(), sensor_point,
-                                  rotation * sensor_point + translation)) {
-          lines.push_back(*line);
-        }
-      }
-    }
-    if (map.surfaces()->size() >= kNeighbours) {
-      for (const CloudPoint& p : surfaces) {
-        const Eigen::Vector3d sensor_point = p.getVector3fMap().cast<double>();
-        if (auto plane = plane_near(map.surface_tree(), *map.surfaces(), sensor_point,
-                                    rotation * sensor_point + translation)) {
-          planes.push_back(*plane);
-        }
-      }
-    }
-    result.edge_matches = static_cast<int>(lines.size());
-    result.plane_matches = static_cast<int>(planes.size());
+    const Eigen::Matrix3d rotation_matrix = rotation.toRotationMatrix();
+    lines.update(rotation_matrix, translation, matches.lines);
+    planes.update(rotation_matrix, translation, matches.planes);
+    result.edge_matches = static_cast<int>(matches.lines.size());
+    result.plane_matches = static_cast<int>(matches.planes.size());
     if (result.edge_matches + result.plane_matches < kMinMatches) break;
 
     double q[4] = {rotation.x(), rotation.y(), rotation.z(), rotation.w()};
     double t[3] = {translation.x(), translation.y(), translation.z()};
+    QuaternionRegistrationCost cost(matches, params_.huber_loss);
+    std::unique_ptr<ceres::CostFunction> prior_cost;
     ceres::Problem::Options problem_options;
     problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres::Problem problem(problem_options);
-    ceres::LossFunction* loss = new ceres::HuberLoss(params_.huber_loss);
     problem.AddParameterBlock(q, 4, &quaternion_manifold);
     problem.AddParameterBlock(t, 3);
-    for (const auto& line : lines) {
-      problem.AddResidualBlock(QuaternionPointToLine::create(line.point, line.a, line.b), loss, q,
-                               t);
-    }
-    for (const auto& plane : planes) {
-      problem.AddResidualBlock(
-          QuaternionPointToPlane::create(plane.point, plane.normal, plane.offset), loss, q, t);
-    }
+    problem.AddResidualBlock(&cost, nullptr, q, t);
     if (prior && prior->weight > 0.0) {
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<DirectionPrior, 1, 3>(new DirectionPrior{
-              guess.linear() * prior->direction, guess.translation(), prior->weight}),
-          nullptr, t);
+      prior_cost.reset(new ceres::AutoDiffCostFunction<DirectionPrior, 1, 3>(new DirectionPrior{
+          guess.linear() * prior->direction, guess.translation(), prior->weight}));
+      problem.AddResidualBlock(prior_cost.get(), nullptr, t);
     }
     if (iteration == 0) {
       // LOAM's degeneracy test: directions whose eigenvalue of J^T J is small get no update.

@@ -43,9 +43,11 @@ bool sweep_fractions(const std::vector<ScanPoint>& points, bool has_time, double
 }
 
 Eigen::Isometry3d interpolate_motion(const Eigen::Isometry3d& motion, double s) {
-  const Eigen::Quaterniond rotation(motion.rotation());
+  // The shortest-arc angle and axis of the rotation: turning by s times the angle is its slerp
+  // from the identity.
+  const Eigen::AngleAxisd rotation(Eigen::Quaterniond(motion.linear()));
   Eigen::Isometry3d partial = Eigen::Isometry3d::Identity();
-  partial.linear() = Eigen::Quaterniond::Identity().slerp(s, rotation).toRotationMatrix();
+  partial.linear() = Eigen::AngleAxisd(s * rotation.angle(), rotation.axis()).toRotationMatrix();
   partial.translation() = s * motion.translation();
   return partial;
 }
@@ -53,11 +55,15 @@ Eigen::Isometry3d interpolate_motion(const Eigen::Isometry3d& motion, double s) 
 void deskew_to_sweep_end(const Eigen::Isometry3d& sweep_motion, const std::vector<float>& fractions,
                          std::vector<ScanPoint>& points) {
   const Eigen::Isometry3d end_from_start = sweep_motion.inverse();
+  // interpolate_motion per point, with the angle and axis found once.
+  const Eigen::AngleAxisd rotation(Eigen::Quaterniond(sweep_motion.linear()));
   for (std::size_t i = 0; i < points.size(); ++i) {
     ScanPoint& p = points[i];
-    const Eigen::Isometry3d start_from_point = interpolate_motion(sweep_motion, fractions[i]);
-    const Eigen::Vector3d moved =
-        end_from_start * (start_from_point * Eigen::Vector3d(p.x, p.y, p.z));
+    const double s = fractions[i];
+    const Eigen::Matrix3d partial =
+        Eigen::AngleAxisd(s * rotation.angle(), rotation.axis()).toRotationMatrix();
+    const Eigen::Vector3d moved = end_from_start * (partial * Eigen::Vector3d(p.x, p.y, p.z) +
+                                                    s * sweep_motion.translation());
     p.x = static_cast<float>(moved.x());
     p.y = static_cast<float>(moved.y());
     p.z = static_cast<float>(moved.z());

@@ -1,22 +1,13 @@
 #include "adaptive_lego_loam/core/odometry.h"
 
+#include <ceres/manifold.h>
+#include <ceres/problem.h>
+
 #include <cmath>
 
 #include "adaptive_lego_loam/core/residuals.h"
 
 namespace adaptive_lego_loam {
-
-struct ScanToScanOdometry::Matches {
-  struct Line {
-    Eigen::Vector3d point, a, b;
-  };
-  struct Plane {
-    Eigen::Vector3d point, normal;
-    double offset;
-  };
-  std::vector<Line> lines;
-  std::vector<Plane> planes;
-};
 
 namespace {
 
@@ -31,11 +22,8 @@ int row_of(const CloudPoint& p) {
 }
 
 // The feature point moved into the previous scan's frame by the current estimate.
-CloudPoint moved_point(const CloudPoint& p, const double* pose) {
-  const Eigen::Vector3d moved = apply_euler_pose(pose, position(p));
-  CloudPoint q = p;
-  q.getVector3fMap() = moved.cast<float>();
-  return q;
+Eigen::Vector3f moved_point(const CloudPoint& p, const Eigen::Isometry3d& pose) {
+  return (pose * position(p)).cast<float>();
 }
 
 }  // namespace
@@ -48,8 +36,8 @@ void ScanToScanOdometry::reset() {
   previous_surfaces_.reset();
 }
 
-void ScanToScanOdometry::find_edge_matches(const Cloud& sharp, const double* pose,
-                                           Matches& matches) {
+void ScanToScanOdometry::find_edge_matches(const Cloud& sharp, const Eigen::Isometry3d& pose,
+                                           Correspondences& matches) const {
   matches.lines.clear();
   if (previous_corners_->size() < 2) return;
   const float max_squared =
@@ -58,22 +46,24 @@ void ScanToScanOdometry::find_edge_matches(const Cloud& sharp, const double* pos
   float squared[kCandidates];
   for (const CloudPoint& p : sharp) {
     const int found =
-        corner_tree_.nearest(moved_point(p, pose).getVector3fMap(), kCandidates, indices, squared);
-    if (found < 2 || squared[0] > max_squared) continue;
+        corner_tree_.nearest(moved_point(p, pose), kCandidates, indices, squared, max_squared);
+    if (found < 2) continue;
     // The line runs through the nearest edge point and the nearest one on a neighbouring row.
     const CloudPoint& nearest = (*previous_corners_)[indices[0]];
     for (int k = 1; k < found; ++k) {
       const CloudPoint& other = (*previous_corners_)[indices[k]];
       const int row_gap = std::abs(row_of(other) - row_of(nearest));
-      if (squared[k] > max_squared || row_gap == 0 || row_gap > 2) continue;
-      matches.lines.push_back({position(p), position(nearest), position(other)});
+      if (row_gap == 0 || row_gap > 2) continue;
+      const Eigen::Vector3d along = position(nearest) - position(other);
+      if (along.norm() < 1e-6) continue;
+      matches.lines.push_back({position(p), position(nearest), along.normalized()});
       break;
     }
   }
 }
 
-void ScanToScanOdometry::find_plane_matches(const Cloud& flat, const double* pose,
-                                            Matches& matches) {
+void ScanToScanOdometry::find_plane_matches(const Cloud& flat, const Eigen::Isometry3d& pose,
+                                            Correspondences& matches) const {
   matches.planes.clear();
   if (previous_surfaces_->size() < 3) return;
   const float max_squared =
@@ -82,15 +72,14 @@ void ScanToScanOdometry::find_plane_matches(const Cloud& flat, const double* pos
   float squared[kCandidates];
   for (const CloudPoint& p : flat) {
     const int found =
-        surface_tree_.nearest(moved_point(p, pose).getVector3fMap(), kCandidates, indices, squared);
-    if (found < 3 || squared[0] > max_squared) continue;
+        surface_tree_.nearest(moved_point(p, pose), kCandidates, indices, squared, max_squared);
+    if (found < 3) continue;
     // The plane runs through the nearest surface point, the nearest on its row and the nearest
     // on a neighbouring row.
     const CloudPoint& nearest = (*previous_surfaces_)[indices[0]];
     const CloudPoint* same_row = nullptr;
     const CloudPoint* other_row = nullptr;
     for (int k = 1; k < found; ++k) {
-      if (squared[k] > max_squared) break;
       const CloudPoint& candidate = (*previous_surfaces_)[indices[k]];
       const int row_gap = std::abs(row_of(candidate) - row_of(nearest));
       if (row_gap == 0 && !same_row) same_row = &candidate;
@@ -105,29 +94,16 @@ void ScanToScanOdometry::find_plane_matches(const Cloud& flat, const double* pos
   }
 }
 
-void ScanToScanOdometry::solve(const Matches& matches, bool use_edges, bool use_planes,
+void ScanToScanOdometry::solve(const Correspondences& matches, MatchKinds kinds,
                                const std::vector<int>& fixed_entries, double* pose) const {
-  ceres::Problem problem;
-  // The problem owns the loss and deletes it once however many blocks share it.
-  ceres::LossFunction* loss = new ceres::HuberLoss(params_.huber_loss);
-  int residuals = 0;
-  if (use_edges) {
-    for (const auto& line : matches.lines) {
-      problem.AddResidualBlock(EulerPointToLine::create(line.point, line.a, line.b), loss, pose);
-      ++residuals;
-    }
-  }
-  if (use_planes) {
-    for (const auto& plane : matches.planes) {
-      problem.AddResidualBlock(EulerPointToPlane::create(plane.point, plane.normal, plane.offset),
-                               loss, pose);
-      ++residuals;
-    }
-  }
-  if (residuals < 10) {
-    if (residuals == 0) delete loss;
-    return;
-  }
+  const std::size_t used = (kinds == MatchKinds::kPlanes ? 0 : matches.lines.size()) +
+                           (kinds == MatchKinds::kLines ? 0 : matches.planes.size());
+  if (used < 10) return;
+  EulerRegistrationCost cost(matches, kinds, params_.huber_loss);
+  ceres::Problem::Options options;
+  options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(options);
+  problem.AddResidualBlock(&cost, nullptr, pose);
   if (!fixed_entries.empty()) {
     problem.SetManifold(pose, new ceres::SubsetManifold(6, fixed_entries));
   }
@@ -142,19 +118,19 @@ OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
   if (previous_corners_ && previous_surfaces_) {
     double pose[6];
     pose_to_euler_vector(guess, pose);
-    Matches matches;
+    Correspondences matches;
     // The first pair starts from no motion at all, possibly far from the truth: more searches.
     const int iterations = first_pair_ ? 4 * params_.max_iterations : params_.max_iterations;
     first_pair_ = false;
     for (int iteration = 0; iteration < iterations; ++iteration) {
       const Eigen::Isometry3d before = euler_vector_to_pose(pose);
-      find_edge_matches(*current.sharp, pose, matches);
-      find_plane_matches(*current.flat, pose, matches);
+      find_edge_matches(*current.sharp, before, matches);
+      find_plane_matches(*current.flat, before, matches);
       if (params_.mode == OdometryMode::kTwoStep) {
-        solve(matches, false, true, {2, 3, 4}, pose);  // ground planes: roll, pitch, z
-        solve(matches, true, false, {0, 1, 5}, pose);  // edges: yaw, x, y
+        solve(matches, MatchKinds::kPlanes, {2, 3, 4}, pose);  // ground planes: roll, pitch, z
+        solve(matches, MatchKinds::kLines, {0, 1, 5}, pose);   // edges: yaw, x, y
       } else {
-        solve(matches, true, true, {}, pose);
+        solve(matches, MatchKinds::kBoth, {}, pose);
       }
       result.iterations = iteration + 1;
       const Eigen::Isometry3d change = before.inverse() * euler_vector_to_pose(pose);

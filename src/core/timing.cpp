@@ -1,6 +1,29 @@
 #include "adaptive_lego_loam/core/timing.h"
 
+#include <chrono>
+#include <ctime>
+
 namespace adaptive_lego_loam {
+namespace {
+Clock stage_clock = Clock::kWall;
+}  // namespace
+
+void set_stage_clock(Clock clock) {
+  stage_clock = clock;
+}
+
+Stopwatch::Stopwatch() : Stopwatch(stage_clock) {}
+
+double Stopwatch::now_ms(Clock clock) {
+  if (clock == Clock::kThreadCpu) {
+    timespec now;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return now.tv_sec * 1e3 + now.tv_nsec * 1e-6;
+  }
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
 
 void StageTimes::add(const std::string& stage, double ms) {
   for (auto& entry : entries_) {

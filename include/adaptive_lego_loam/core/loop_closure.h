@@ -52,10 +52,11 @@ int find_loop_candidate(const std::vector<Keyframe>& keyframes, int current_inde
                         const LoopClosureParams& params);
 
 // Finds a candidate and aligns the current keyframe's cloud (corners + surfaces + outliers, placed
-// in the map frame by its pose) to the candidate's map: the candidate and up to
-// neighbourhood_keyframes keyframes on either side of it (leaving out any less than min_time_gap
-// older than the current one), in the map frame, voxel-filtered. Accepted when ICP converged with
-// fitness below fitness_threshold. Throws std::out_of_range for a bad current_index.
+// in the map frame by its pose; every n-th point, at most icp_max_points) to the candidate's map:
+// the candidate and up to neighbourhood_keyframes keyframes on either side of it (leaving out any
+// less than min_time_gap older than the current one), in the map frame, voxel-filtered. Accepted
+// when ICP converged with fitness below fitness_threshold. Throws std::out_of_range for a bad
+// current_index.
 LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
                           const LoopClosureParams& params);
 

@@ -5,6 +5,7 @@
 // test) receive no update.
 
 #include <Eigen/Geometry>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "adaptive_lego_loam/core/kdtree.h"
 #include "adaptive_lego_loam/core/keyframe.h"
 #include "adaptive_lego_loam/core/params.h"
+#include "adaptive_lego_loam/core/voxel_filter.h"
 
 namespace adaptive_lego_loam {
 
@@ -19,8 +21,9 @@ namespace adaptive_lego_loam {
 class LocalMap {
  public:
   explicit LocalMap(const MappingParams& params);
-  // Rebuilds from the keyframes near `position` when that set (or `version`, bumped when
-  // keyframe poses change) differs from the last build. Returns whether it rebuilt.
+  // Updates from the keyframes near `position` when that set (or `version`, bumped when
+  // keyframe poses change) differs from the last update: keyframes that left the set are taken
+  // out, new ones put in (everything again after a version change). Returns whether it changed.
   bool update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position, int version);
   const CloudPtr& corners() const { return corners_; }
   const CloudPtr& surfaces() const { return surfaces_; }
@@ -29,11 +32,20 @@ class LocalMap {
   bool empty() const { return corners_->empty() && surfaces_->empty(); }
 
  private:
+  // A keyframe's features as they were put in the map (to take them out again).
+  struct Placed {
+    CloudPtr corners, surfaces;
+  };
   std::vector<int> select(const std::vector<Keyframe>& keyframes,
                           const Eigen::Vector3d& position) const;
+  void put_in(const Keyframe& keyframe);
+  void take_out(int keyframe);
+
   MappingParams params_;
   std::vector<int> selected_;
   int version_ = -1;
+  VoxelSums corner_sums_, surface_sums_;
+  std::map<int, Placed> placed_;
   CloudPtr corners_{new Cloud}, surfaces_{new Cloud};
   PointKdTree corner_tree_, surface_tree_;
 };
@@ -66,8 +78,5 @@ class ScanToMapMatcher {
  private:
   MappingParams params_;
 };
-
-// Voxel-filtered copy of `cloud` (no filtering when leaf <= 0).
-CloudPtr voxel_filter(const Cloud& cloud, double leaf);
 
 }  // namespace adaptive_lego_loam

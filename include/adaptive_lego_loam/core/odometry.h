@@ -12,6 +12,9 @@
 
 namespace adaptive_lego_loam {
 
+struct Correspondences;       // core/residuals.h
+enum class MatchKinds : int;  // core/residuals.h
+
 struct OdometryResult {
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // current scan in previous' frame
   int edge_matches = 0;
@@ -29,11 +32,13 @@ class ScanToScanOdometry {
   void reset();
 
  private:
-  struct Matches;
-  void find_edge_matches(const Cloud& sharp, const double* pose, Matches& matches);
-  void find_plane_matches(const Cloud& flat, const double* pose, Matches& matches);
-  // One Ceres solve over the given residual kinds with the listed pose entries held fixed.
-  void solve(const Matches& matches, bool use_edges, bool use_planes,
+  void find_edge_matches(const Cloud& sharp, const Eigen::Isometry3d& pose,
+                         Correspondences& matches) const;
+  void find_plane_matches(const Cloud& flat, const Eigen::Isometry3d& pose,
+                          Correspondences& matches) const;
+  // One Ceres solve over the given correspondence kinds with the listed entries of the Euler
+  // 6-vector held fixed.
+  void solve(const Correspondences& matches, MatchKinds kinds,
              const std::vector<int>& fixed_entries, double* pose) const;
 
   OdometryParams params_;

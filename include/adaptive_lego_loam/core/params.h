@@ -149,7 +149,9 @@ struct LoopClosureParams {
   double fitness_threshold = 0.3;    // m^2: accepted below this ICP fitness (mean squared distance)
   double voxel_size = 0.4;           // m: leaf of the candidate's map; 0 = no filter
   double icp_max_correspondence_distance = 100.0;  // m
-  int icp_max_iterations = 100;
+  int icp_max_iterations = 30;
+  // ICP aligns every n-th point of the newest keyframe, at most this many: bounds its time.
+  int icp_max_points = 2000;
   // Pose-graph weights (1-sigma errors): of the odometry between consecutive keyframes and of a
   // loop measured by ICP.
   double odometry_sigma_translation = 0.05;  // m

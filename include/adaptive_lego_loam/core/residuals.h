@@ -1,104 +1,77 @@
 #pragma once
-// Ceres residuals of LOAM-style registration: point-to-line and point-to-plane distances of a
-// transformed point, for the two pose parameterisations the core uses.
+// Ceres cost functions of LOAM-style registration: point-to-line and point-to-plane distances of
+// the scan's feature points moved by a pose, for the two pose parameterisations the core uses.
 //   Euler: 6 doubles [roll, pitch, yaw, x, y, z], R = Rz(yaw) Ry(pitch) Rx(roll) (scan-to-scan,
 //          so that LeGO-LOAM's two-step solve can hold roll/pitch/z or yaw/x/y fixed).
 //   Quaternion: 4 doubles (Eigen order x, y, z, w; EigenQuaternionManifold) + 3 translation.
+//
+// All correspondences of one solve form one cost function with analytic derivatives: one
+// automatically differentiated residual block per correspondence spent most of a solve in dual
+// numbers and Ceres' per-block bookkeeping. Each correspondence keeps its own Huber loss (see
+// huber_residual in residuals.cpp), so the cost is the same as with per-block losses.
 
-#include <ceres/ceres.h>
-#include <ceres/rotation.h>
+#include <ceres/cost_function.h>
+#include <ceres/solver.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 namespace adaptive_lego_loam {
 
-template <typename T>
-Eigen::Matrix<T, 3, 1> apply_euler_pose(const T* pose, const Eigen::Vector3d& point) {
-  const T cr = cos(pose[0]), sr = sin(pose[0]);
-  const T cp = cos(pose[1]), sp = sin(pose[1]);
-  const T cy = cos(pose[2]), sy = sin(pose[2]);
-  const T x = T(point.x()), y = T(point.y()), z = T(point.z());
-  // Rx(roll), then Ry(pitch), then Rz(yaw).
-  const T y1 = cr * y - sr * z, z1 = sr * y + cr * z;
-  const T x2 = cp * x + sp * z1, z2 = -sp * x + cp * z1;
-  return {cy * x2 - sy * y1 + pose[3], sy * x2 + cy * y1 + pose[4], z2 + pose[5]};
-}
-
-template <typename T>
-Eigen::Matrix<T, 3, 1> apply_quaternion_pose(const T* rotation, const T* translation,
-                                             const Eigen::Vector3d& point) {
-  const Eigen::Map<const Eigen::Quaternion<T>> q(rotation);
-  return q * point.cast<T>() + Eigen::Map<const Eigen::Matrix<T, 3, 1>>(translation);
-}
-
-// Distance vector from `moved` to the line through a and b.
-template <typename T>
-void line_residual(const Eigen::Matrix<T, 3, 1>& moved, const Eigen::Vector3d& a,
-                   const Eigen::Vector3d& b, T* residual) {
-  const Eigen::Matrix<T, 3, 1> cross = (moved - a.cast<T>()).cross(moved - b.cast<T>());
-  const T length = T((a - b).norm());
-  for (int i = 0; i < 3; ++i)
-    residual[i] = cross[i] / length;
-}
-
-struct EulerPointToLine {
-  Eigen::Vector3d point, a, b;
-  template <typename T>
-  bool operator()(const T* pose, T* residual) const {
-    line_residual(apply_euler_pose(pose, point), a, b, residual);
-    return true;
-  }
-  static ceres::CostFunction* create(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                     const Eigen::Vector3d& b) {
-    return new ceres::AutoDiffCostFunction<EulerPointToLine, 3, 6>(new EulerPointToLine{p, a, b});
-  }
+// A feature point (scan frame) and the line it should lie on (target frame): through `through`,
+// along the unit vector `direction`.
+struct LineMatch {
+  Eigen::Vector3d point, through, direction;
 };
-
-struct EulerPointToPlane {
-  Eigen::Vector3d point, normal;
-  double offset;  // plane: normal . x + offset = 0, |normal| = 1
-  template <typename T>
-  bool operator()(const T* pose, T* residual) const {
-    residual[0] = normal.cast<T>().dot(apply_euler_pose(pose, point)) + T(offset);
-    return true;
-  }
-  static ceres::CostFunction* create(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double d) {
-    return new ceres::AutoDiffCostFunction<EulerPointToPlane, 1, 6>(new EulerPointToPlane{p, n, d});
-  }
-};
-
-struct QuaternionPointToLine {
-  Eigen::Vector3d point, a, b;
-  template <typename T>
-  bool operator()(const T* rotation, const T* translation, T* residual) const {
-    line_residual(apply_quaternion_pose(rotation, translation, point), a, b, residual);
-    return true;
-  }
-  static ceres::CostFunction* create(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                     const Eigen::Vector3d& b) {
-    return new ceres::AutoDiffCostFunction<QuaternionPointToLine, 3, 4, 3>(
-        new QuaternionPointToLine{p, a, b});
-  }
-};
-
-struct QuaternionPointToPlane {
+// A feature point (scan frame) and the plane normal . x + offset = 0, |normal| = 1 (target frame).
+struct PlaneMatch {
   Eigen::Vector3d point, normal;
   double offset;
-  template <typename T>
-  bool operator()(const T* rotation, const T* translation, T* residual) const {
-    residual[0] =
-        normal.cast<T>().dot(apply_quaternion_pose(rotation, translation, point)) + T(offset);
-    return true;
-  }
-  static ceres::CostFunction* create(const Eigen::Vector3d& p, const Eigen::Vector3d& n, double d) {
-    return new ceres::AutoDiffCostFunction<QuaternionPointToPlane, 1, 4, 3>(
-        new QuaternionPointToPlane{p, n, d});
-  }
 };
 
-// Options of the core's small registration problems (6 parameters, thousands of residuals):
-// dense QR, one thread (deterministic), silent.
+struct Correspondences {
+  std::vector<LineMatch> lines;
+  std::vector<PlaneMatch> planes;
+  void clear() {
+    lines.clear();
+    planes.clear();
+  }
+  int size() const { return static_cast<int>(lines.size() + planes.size()); }
+};
+
+// Which correspondences a cost function uses (LeGO-LOAM's two-step odometry solves each kind
+// alone).
+enum class MatchKinds : int { kLines, kPlanes, kBoth };
+
+// Residuals over the Euler 6-vector: 3 per line (the distance vector), 1 per plane.
+class EulerRegistrationCost : public ceres::CostFunction {
+ public:
+  // Keeps a reference to `matches`, which must outlive it.
+  EulerRegistrationCost(const Correspondences& matches, MatchKinds kinds, double huber_loss);
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  const Correspondences& matches_;
+  MatchKinds kinds_;
+  double huber_loss_;
+};
+
+// The same over a quaternion block (4) and a translation block (3).
+class QuaternionRegistrationCost : public ceres::CostFunction {
+ public:
+  QuaternionRegistrationCost(const Correspondences& matches, double huber_loss);
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  const Correspondences& matches_;
+  double huber_loss_;
+};
+
+// Options of the core's small registration problems (6 or 7 parameters, one cost function):
+// dense normal equations, one thread (deterministic), silent.
 ceres::Solver::Options registration_solver_options(int max_iterations);
 
 // 6-vector [roll, pitch, yaw, x, y, z] <-> pose.

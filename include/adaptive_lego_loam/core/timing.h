@@ -2,7 +2,6 @@
 // Per-stage wall-clock times. Every stage of the pipeline reports into one of these so the
 // offline runner, the nodes and the benchmarks print the same figures.
 
-#include <chrono>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,23 +21,29 @@ class StageTimes {
   std::vector<std::pair<std::string, double>> entries_;
 };
 
+enum class Clock { kWall, kThreadCpu };
+
+// The clock of the Stopwatches made afterwards without one; wall-clock by default. Thread CPU
+// time leaves out the time other processes held the core: stage times on a shared machine.
+void set_stage_clock(Clock clock);
+
 class Stopwatch {
  public:
-  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
-  double elapsed_ms() const {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
-        .count();
-  }
+  Stopwatch();  // on the stage clock
+  explicit Stopwatch(Clock clock) : clock_(clock), start_(now_ms(clock)) {}
+  double elapsed_ms() const { return now_ms(clock_) - start_; }
   // Returns the time since the last lap (or construction) and starts a new lap.
   double lap_ms() {
-    const auto now = std::chrono::steady_clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(now - start_).count();
+    const double now = now_ms(clock_);
+    const double ms = now - start_;
     start_ = now;
     return ms;
   }
 
  private:
-  std::chrono::steady_clock::time_point start_;
+  static double now_ms(Clock clock);
+  Clock clock_;
+  double start_;
 };
 
 }  // namespace adaptive_lego_loam

@@ -1,0 +1,203 @@
+// The building blocks of odometry and mapping: the KD-tree against a brute-force search, and the
+// registration cost functions' analytic Jacobians against finite differences.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "adaptive_lego_loam/core/kdtree.h"
+#include "adaptive_lego_loam/core/residuals.h"
+
+using namespace adaptive_lego_loam;
+
+namespace {
+
+CloudPtr random_cloud(int size, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> coordinate(-10.f, 10.f);
+  CloudPtr cloud(new Cloud);
+  for (int i = 0; i < size; ++i) {
+    CloudPoint p;
+    p.x = coordinate(random);
+    p.y = coordinate(random);
+    p.z = 0.1f * coordinate(random);  // flat, as scans are
+    cloud->push_back(p);
+  }
+  // Duplicates and points on one line: ties and zero extents.
+  for (int i = 0; i < 20; ++i)
+    cloud->push_back((*cloud)[i]);
+  for (int i = 0; i < 30; ++i) {
+    CloudPoint p;
+    p.x = 0.5f * static_cast<float>(i);
+    p.y = p.z = 1.f;
+    cloud->push_back(p);
+  }
+  return cloud;
+}
+
+// Squared distances of the k nearest points within the bound, nearest first.
+std::vector<float> brute_force(const Cloud& cloud, const Eigen::Vector3f& query, int k,
+                               float max_squared) {
+  std::vector<float> squared;
+  for (const CloudPoint& p : cloud) {
+    const float dx = p.x - query.x(), dy = p.y - query.y(), dz = p.z - query.z();
+    const float d = dx * dx + dy * dy + dz * dz;  // as the tree sums them
+    if (d <= max_squared) squared.push_back(d);
+  }
+  std::sort(squared.begin(), squared.end());
+  squared.resize(std::min<std::size_t>(squared.size(), k));
+  return squared;
+}
+
+}  // namespace
+
+TEST(KdTree, MatchesBruteForce) {
+  const CloudPtr cloud = random_cloud(3000, 7);
+  PointKdTree tree;
+  tree.build(cloud);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> coordinate(-12.f, 12.f);
+  for (int query_index = 0; query_index < 300; ++query_index) {
+    const Eigen::Vector3f query(coordinate(random), coordinate(random), 0.1f * coordinate(random));
+    for (int k : {1, 5, 15}) {
+      for (float bound : {std::numeric_limits<float>::infinity(), 1.0f, 0.05f}) {
+        uint32_t indices[15];
+        float squared[15];
+        const int found = tree.nearest(query, k, indices, squared, bound);
+        const std::vector<float> expected = brute_force(*cloud, query, k, bound);
+        ASSERT_EQ(found, static_cast<int>(expected.size())) << "k " << k << " bound " << bound;
+        for (int i = 0; i < found; ++i) {
+          EXPECT_NEAR(squared[i], expected[i], 1e-5f * expected[i]);
+          EXPECT_NEAR(((*cloud)[indices[i]].getVector3fMap() - query).squaredNorm(), squared[i],
+                      1e-4f);
+        }
+      }
+    }
+  }
+}
+
+TEST(KdTree, EmptyAndTinyClouds) {
+  PointKdTree tree;
+  uint32_t index;
+  float squared;
+  EXPECT_TRUE(tree.empty());
+  EXPECT_EQ(tree.nearest(Eigen::Vector3f::Zero(), 1, &index, &squared), 0);
+  tree.build(CloudPtr(new Cloud));
+  EXPECT_TRUE(tree.empty());
+  CloudPtr one(new Cloud);
+  CloudPoint p;
+  p.x = 1.f;
+  p.y = p.z = 0.f;
+  one->push_back(p);
+  tree.build(one);
+  uint32_t indices[3];
+  float distances[3];
+  EXPECT_EQ(tree.nearest(Eigen::Vector3f::Zero(), 3, indices, distances), 1);
+  EXPECT_EQ(indices[0], 0u);
+  EXPECT_FLOAT_EQ(distances[0], 1.f);
+  // The bound is inclusive.
+  EXPECT_EQ(tree.nearest(Eigen::Vector3f::Zero(), 3, indices, distances, 1.f), 1);
+  EXPECT_EQ(tree.nearest(Eigen::Vector3f::Zero(), 3, indices, distances, 0.99f), 0);
+}
+
+namespace {
+
+Correspondences some_matches() {
+  Correspondences matches;
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> coordinate(-5.0, 5.0);
+  auto vector = [&] {
+    return Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+  };
+  for (int i = 0; i < 6; ++i) {
+    // Near and far from the line or plane: inside and beyond the Huber threshold.
+    matches.lines.push_back({vector(), vector(), vector().normalized()});
+    const Eigen::Vector3d normal = vector().normalized();
+    matches.planes.push_back({vector(), normal, 0.1 * coordinate(random)});
+  }
+  return matches;
+}
+
+// Central differences of `cost` in each entry of each parameter block.
+void expect_jacobians_match(const ceres::CostFunction& cost, std::vector<double*> blocks) {
+  const int residuals = cost.num_residuals();
+  const std::vector<int32_t>& sizes = cost.parameter_block_sizes();
+  std::vector<std::vector<double>> jacobians(blocks.size());
+  std::vector<double*> jacobian_pointers;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    jacobians[b].resize(residuals * sizes[b]);
+    jacobian_pointers.push_back(jacobians[b].data());
+  }
+  std::vector<double> r(residuals), plus(residuals), minus(residuals);
+  ASSERT_TRUE(cost.Evaluate(blocks.data(), r.data(), jacobian_pointers.data()));
+  const double step = 1e-6;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    for (int entry = 0; entry < sizes[b]; ++entry) {
+      const double saved = blocks[b][entry];
+      blocks[b][entry] = saved + step;
+      cost.Evaluate(blocks.data(), plus.data(), nullptr);
+      blocks[b][entry] = saved - step;
+      cost.Evaluate(blocks.data(), minus.data(), nullptr);
+      blocks[b][entry] = saved;
+      for (int row = 0; row < residuals; ++row) {
+        EXPECT_NEAR(jacobians[b][row * sizes[b] + entry], (plus[row] - minus[row]) / (2 * step),
+                    1e-5)
+            << "block " << b << " entry " << entry << " row " << row;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST(RegistrationCost, EulerJacobianMatchesFiniteDifferences) {
+  const Correspondences matches = some_matches();
+  double pose[6] = {0.1, -0.2, 0.3, 0.5, -0.4, 0.2};
+  for (MatchKinds kinds : {MatchKinds::kBoth, MatchKinds::kLines, MatchKinds::kPlanes}) {
+    const EulerRegistrationCost cost(matches, kinds, 0.5);
+    expect_jacobians_match(cost, {pose});
+  }
+  EXPECT_EQ(EulerRegistrationCost(matches, MatchKinds::kBoth, 0.5).num_residuals(), 6 * 3 + 6);
+}
+
+TEST(RegistrationCost, QuaternionJacobianMatchesFiniteDifferences) {
+  const Correspondences matches = some_matches();
+  const Eigen::Quaterniond q =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));
+  double rotation[4] = {q.x(), q.y(), q.z(), q.w()};
+  double translation[3] = {0.3, -0.1, 0.2};
+  const QuaternionRegistrationCost cost(matches, 0.5);
+  expect_jacobians_match(cost, {rotation, translation});
+}
+
+// The cost equals the sum of per-correspondence Huber losses of the point-to-line and
+// point-to-plane distances.
+TEST(RegistrationCost, CostIsHuberOfDistances) {
+  const Correspondences matches = some_matches();
+  const double delta = 0.5;
+  double pose[6] = {0.1, -0.2, 0.3, 0.5, -0.4, 0.2};
+  const EulerRegistrationCost cost(matches, MatchKinds::kBoth, delta);
+  std::vector<double> r(cost.num_residuals());
+  const double* blocks[] = {pose};
+  ASSERT_TRUE(cost.Evaluate(blocks, r.data(), nullptr));
+  const Eigen::Isometry3d transform = euler_vector_to_pose(pose);
+  auto huber = [delta](double s) {
+    return s <= delta * delta ? s : 2 * delta * std::sqrt(s) - delta * delta;
+  };
+  double expected = 0.0;
+  for (const LineMatch& line : matches.lines) {
+    const Eigen::Vector3d moved = transform * line.point;
+    expected += huber((moved - line.through).cross(line.direction).squaredNorm());
+  }
+  for (const PlaneMatch& plane : matches.planes) {
+    const double distance = plane.normal.dot(transform * plane.point) + plane.offset;
+    expected += huber(distance * distance);
+  }
+  double actual = 0.0;
+  for (double value : r)
+    actual += value * value;
+  EXPECT_NEAR(actual, expected, 1e-9 * expected);
+}
