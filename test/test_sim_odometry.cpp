@@ -1,5 +1,6 @@
 // The whole pipeline on simulated sequences with exact ground truth: a known trajectory is
-// recovered and a loop is closed; the ambient filter finds the tunnel more degenerate.
+// recovered and a loop is closed; the ambient filter finds the tunnel and the highway more
+// degenerate than the city.
 
 #include <gtest/gtest.h>
 
@@ -20,8 +21,11 @@ Config kitti_config() {
   return load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
 }
 
-// KITTI's HDL-64E (2083 firings a turn, de-skewed scans as KITTI ships them) driving `kind`.
-std::vector<SimFrame> simulate(ScenarioKind kind, uint64_t seed, int frames) {
+// KITTI's HDL-64E (2083 firings a turn, de-skewed scans as KITTI ships them) driving `kind`: the
+// scene of a `frames`-frame drive, of which the frames `first`, `first + step`, ... before
+// `rendered` are simulated (a loop's path wraps round: frames past `frames` go round again).
+std::vector<SimFrame> simulate(ScenarioKind kind, uint64_t seed, int frames, int rendered,
+                               int step = 1) {
   const SensorParams sensor = kitti_config().sensor;
   SceneRequest request;
   request.scenario = default_scenario(kind);
@@ -34,7 +38,7 @@ std::vector<SimFrame> simulate(ScenarioKind kind, uint64_t seed, int frames) {
   options.motion_distortion = false;
   LidarSimulator simulator(LidarModel(sensor, options), scene.world, scene.trajectory, seed);
   std::vector<SimFrame> out;
-  for (int frame = 0; frame < frames; ++frame)
+  for (int frame = 0; frame < rendered; frame += step)
     out.push_back(simulator.render(frame));
   return out;
 }
@@ -42,9 +46,11 @@ std::vector<SimFrame> simulate(ScenarioKind kind, uint64_t seed, int frames) {
 }  // namespace
 
 TEST(SimOdometry, LoopTrajectoryRecoveredAndClosed) {
-  // A 160 m urban loop in 20 s; loops are looked for 15 s back (LeGO-LOAM: 30 s) to keep the
-  // test short.
-  const std::vector<SimFrame> frames = simulate(ScenarioKind::kLoop, 2, 200);
+  // A 160 m urban loop in 20 s, and on past the start for 2.5 s: loops are looked for once a
+  // second, and only from past the start does the candidate's map (the first keyframes and those
+  // after them) cover what the scan sees. Loops are looked for 15 s back (LeGO-LOAM: 30 s) to
+  // keep the test short.
+  const std::vector<SimFrame> frames = simulate(ScenarioKind::kLoop, 2, 200, 225);
   Config config = kitti_config();
   config.loop_closure.min_time_gap = 15.0;
   Pipeline pipeline(config);
@@ -70,24 +76,26 @@ TEST(SimOdometry, LoopTrajectoryRecoveredAndClosed) {
       absolute_trajectory_error(estimate, truth).rmse_m);
 }
 
-// The highway comes out below the urban street on these scenes (measured 0.68 against 0.77): its
-// guard rails, seen at grazing incidence, are cut by the strict depth clustering of the skeleton,
-// and the shrubs' normals point every way. Only the tunnel's order is asserted.
-TEST(SimOdometry, TunnelIsMoreDegenerateThanUrban) {
+// Mean mu over every 10th of 200 frames of seeds 1-3 (HDL-64E). Measured: urban 0.68, highway
+// 0.90, tunnel 0.93. The highway's stretches differ: along concrete barriers, noise walls, berms
+// and cuttings mu is 0.85-0.95; along guard rails alone it falls to 0.5 or below, as a rail's
+// few rows break into small depth clusters and the skeleton keeps little more than nearby cars,
+// posts and signs.
+TEST(SimOdometry, HighwayAndTunnelAreMoreDegenerateThanUrban) {
   const Config config = kitti_config();
   auto mean_mu = [&](ScenarioKind kind) {
     AmbientFilter filter(config);
     AmbientFilterResult result;
     double sum = 0.0;
     int valid = 0;
-    const std::vector<SimFrame> frames = simulate(kind, 3, 80);
-    for (std::size_t i = 0; i < frames.size(); i += 8) {
-      const SimFrame& frame = frames[i];
-      filter.reset();
-      filter.process(frame.scan, result);
-      if (!result.degeneration.valid) continue;
-      sum += result.degeneration.mu;
-      ++valid;
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+      for (const SimFrame& frame : simulate(kind, seed, 200, 200, 10)) {
+        filter.reset();
+        filter.process(frame.scan, result);
+        if (!result.degeneration.valid) continue;
+        sum += result.degeneration.mu;
+        ++valid;
+      }
     }
     return valid > 0 ? sum / valid : -1.0;
   };
@@ -98,5 +106,6 @@ TEST(SimOdometry, TunnelIsMoreDegenerateThanUrban) {
               tunnel);
   ASSERT_GE(urban, 0.0);
   EXPECT_GT(tunnel, urban + 0.1);
+  EXPECT_GT(highway, urban + 0.1);
   EXPECT_GT(tunnel, 0.85);
 }

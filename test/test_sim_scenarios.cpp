@@ -188,15 +188,19 @@ TEST(SimScenarios, TunnelHasWallsOnBothSidesAndNothingAcrossTheRoad) {
   EXPECT_LT(double(tunnel.facing_along_road) / tunnel.non_ground, 0.03);
 }
 
-TEST(SimScenarios, HighwayIsGuardRailsAndShrubsAlongTheRoad) {
+TEST(SimScenarios, HighwayIsBarriersWallsAndShrubsAlongTheRoad) {
   const Character highway = character_of(ScenarioKind::kHighway);
   const Character urban = character_of(ScenarioKind::kUrban);
   EXPECT_EQ(highway.share(SemanticClass::kBuilding), 0.0);
-  EXPECT_EQ(highway.share(SemanticClass::kOtherStructure), 0.0);
-  EXPECT_GT(highway.non_ground_share({SemanticClass::kFence, SemanticClass::kVegetation,
-                                      SemanticClass::kTrunk, SemanticClass::kMovingCar}),
-            0.95);
-  EXPECT_GT(highway.non_ground_share({SemanticClass::kFence}), 0.4);
+  EXPECT_EQ(highway.share(SemanticClass::kCar), 0.0);  // nobody parks on a highway
+  // Guard rails and concrete barriers (fence), noise walls (other-structure), berms and cuttings
+  // (terrain), shrubs and trees, traffic, the odd sign.
+  EXPECT_GT(highway.non_ground_share({SemanticClass::kFence, SemanticClass::kOtherStructure,
+                                      SemanticClass::kTerrain, SemanticClass::kVegetation,
+                                      SemanticClass::kTrunk, SemanticClass::kMovingCar,
+                                      SemanticClass::kPole, SemanticClass::kTrafficSign}),
+            0.99);
+  EXPECT_GT(highway.non_ground_share({SemanticClass::kFence, SemanticClass::kOtherStructure}), 0.4);
   // Surfaces facing along the road are what pins the motion along it: the city has many more.
   const double highway_facing = double(highway.facing_along_road) / highway.non_ground;
   const double urban_facing = double(urban.facing_along_road) / urban.non_ground;

@@ -1,5 +1,7 @@
 #include "adaptive_lego_loam/sim/geometry.h"
 
+#include <cmath>
+
 namespace adaptive_lego_loam::sim {
 
 uint32_t GeometrySet::add_vertex(const Eigen::Vector3f& vertex) {
@@ -30,6 +32,26 @@ void GeometrySet::add_quad(const Eigen::Vector3f& a, const Eigen::Vector3f& b,
 void GeometrySet::add_cylinder(const Eigen::Vector3f& a, const Eigen::Vector3f& b, float radius,
                                uint32_t surface) {
   cylinders.push_back({a, b, radius, surface});
+}
+
+void GeometrySet::add_prism(const Eigen::Vector3f& a, const Eigen::Vector3f& b, float radius,
+                            int sides, uint32_t surface) {
+  const Eigen::Vector3f axis = (b - a).normalized();
+  const Eigen::Vector3f u = axis.unitOrthogonal(), v = axis.cross(u);
+  std::vector<Eigen::Vector3f> ring;
+  for (int k = 0; k < sides; ++k) {
+    const float angle = 2.0f * static_cast<float>(M_PI) * k / sides;
+    ring.push_back(radius * (std::cos(angle) * u + std::sin(angle) * v));
+  }
+  for (int k = 0; k < sides; ++k) {
+    const Eigen::Vector3f& p = ring[k];
+    const Eigen::Vector3f& q = ring[(k + 1) % sides];
+    add_quad(a + p, a + q, b + q, b + p, surface);
+  }
+  for (int k = 1; k + 1 < sides; ++k) {  // the caps, as fans
+    add_triangle(a + ring[0], a + ring[k + 1], a + ring[k], surface);
+    add_triangle(b + ring[0], b + ring[k], b + ring[k + 1], surface);
+  }
 }
 
 Eigen::AlignedBox3f GeometrySet::bounds() const {

@@ -38,22 +38,12 @@ LidarModel::LidarModel(const SensorParams& sensor, const SimSensorOptions& optio
   cos_no_return_ = std::cos(options.no_return_incidence_deg * M_PI / 180.0);
 }
 
-Eigen::Vector3d LidarModel::direction(int beam, int column) const {
-  return {cos_elevation_[beam] * cos_azimuth_[column], cos_elevation_[beam] * sin_azimuth_[column],
-          sin_elevation_[beam]};
-}
-
 double LidarModel::azimuth(int column) const {
   return M_PI - 2.0 * M_PI * column / options_.columns;
 }
 
 double LidarModel::column_time(int column) const {
   return sensor_.scan_period * column / options_.columns;
-}
-
-double LidarModel::return_probability(double cos_incidence) const {
-  return std::clamp((cos_incidence - cos_no_return_) / (cos_full_return_ - cos_no_return_), 0.0,
-                    1.0);
 }
 
 }  // namespace adaptive_lego_loam::sim

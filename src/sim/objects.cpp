@@ -48,8 +48,8 @@ void add_car(GeometrySet& set, const Eigen::Isometry3f& pose, const CarShape& c,
   for (float x : {-axle, axle}) {
     for (float side : {-1.0f, 1.0f}) {
       const float outer = side * 0.5f * c.width, inner = side * (0.5f * c.width - 0.22f);
-      set.add_cylinder(pose * Eigen::Vector3f(x, inner, radius),
-                       pose * Eigen::Vector3f(x, outer, radius), radius, wheel_surface);
+      set.add_prism(pose * Eigen::Vector3f(x, inner, radius),
+                    pose * Eigen::Vector3f(x, outer, radius), radius, 16, wheel_surface);
     }
   }
 }
@@ -65,16 +65,16 @@ void add_person(GeometrySet& set, const Eigen::Isometry3f& pose, float height, f
     const Eigen::Vector3f foot =
         hip_joint +
         (hip - 0.02f) * Eigen::Vector3f(std::sin(leg_angle), 0.0f, -std::cos(leg_angle));
-    set.add_cylinder(pose * hip_joint, pose * foot, 0.07f * girth, surface);
+    set.add_prism(pose * hip_joint, pose * foot, 0.07f * girth, 8, surface);
     const Eigen::Vector3f shoulder_joint(0.0f, side * 0.21f * girth, shoulder);
     const Eigen::Vector3f hand =
         shoulder_joint + arm * Eigen::Vector3f(-std::sin(leg_angle), 0.0f, -std::cos(leg_angle));
-    set.add_cylinder(pose * shoulder_joint, pose * hand, 0.045f * girth, surface);
+    set.add_prism(pose * shoulder_joint, pose * hand, 0.045f * girth, 8, surface);
   }
-  set.add_cylinder(pose * Eigen::Vector3f(0.0f, 0.0f, hip - 0.05f),
-                   pose * Eigen::Vector3f(0.0f, 0.0f, shoulder + 0.03f), 0.16f * girth, surface);
-  set.add_cylinder(pose * Eigen::Vector3f(0.0f, 0.0f, shoulder + 0.06f),
-                   pose * Eigen::Vector3f(0.0f, 0.0f, h), 0.1f * girth, surface);
+  set.add_prism(pose * Eigen::Vector3f(0.0f, 0.0f, hip - 0.05f),
+                pose * Eigen::Vector3f(0.0f, 0.0f, shoulder + 0.03f), 0.16f * girth, 12, surface);
+  set.add_prism(pose * Eigen::Vector3f(0.0f, 0.0f, shoulder + 0.06f),
+                pose * Eigen::Vector3f(0.0f, 0.0f, h), 0.1f * girth, 12, surface);
 }
 
 void add_building(GeometrySet& set, const Eigen::Isometry3f& pose, const Eigen::Vector3f& size,
@@ -94,16 +94,16 @@ void add_street_light(GeometrySet& set, const Eigen::Vector3f& base, const Eigen
                       float height, float arm, uint32_t surface) {
   const Eigen::Vector3f top = base + Eigen::Vector3f(0.0f, 0.0f, height);
   const Eigen::Vector3f reach = top + arm * toward.normalized();
-  set.add_cylinder(base - Eigen::Vector3f(0, 0, 0.3f), top, 0.09f, surface);
-  set.add_cylinder(top - Eigen::Vector3f(0, 0, 0.1f), reach, 0.05f, surface);
+  set.add_prism(base - Eigen::Vector3f(0, 0, 0.3f), top, 0.09f, 12, surface);
+  set.add_prism(top - Eigen::Vector3f(0, 0, 0.1f), reach, 0.05f, 8, surface);
   add_box(set, yaw_pose(reach - Eigen::Vector3f(0, 0, 0.2f), std::atan2(toward.y(), toward.x())),
           Eigen::Vector3f(0.6f, 0.3f, 0.2f), surface);
 }
 
 void add_sign(GeometrySet& set, const Eigen::Vector3f& base, const Eigen::Vector3f& facing,
               uint32_t pole_surface, uint32_t sign_surface) {
-  set.add_cylinder(base - Eigen::Vector3f(0, 0, 0.3f), base + Eigen::Vector3f(0, 0, 2.6f), 0.035f,
-                   pole_surface);
+  set.add_prism(base - Eigen::Vector3f(0, 0, 0.3f), base + Eigen::Vector3f(0, 0, 2.6f), 0.035f, 8,
+                pole_surface);
   const float yaw = std::atan2(facing.y(), facing.x());
   add_box(set, yaw_pose(base + Eigen::Vector3f(0, 0, 2.0f) + 0.05f * facing.normalized(), yaw),
           Eigen::Vector3f(0.04f, 0.65f, 0.65f), sign_surface);
@@ -112,10 +112,10 @@ void add_sign(GeometrySet& set, const Eigen::Vector3f& base, const Eigen::Vector
 void add_power_pole(GeometrySet& set, const Eigen::Vector3f& base, const Eigen::Vector3f& across,
                     uint32_t surface) {
   const Eigen::Vector3f top = base + Eigen::Vector3f(0, 0, 9.0f);
-  set.add_cylinder(base - Eigen::Vector3f(0, 0, 0.5f), top, 0.14f, surface);
+  set.add_prism(base - Eigen::Vector3f(0, 0, 0.5f), top, 0.14f, 12, surface);
   const Eigen::Vector3f arm = 1.2f * across.normalized();
   const Eigen::Vector3f arm_height = top - Eigen::Vector3f(0, 0, 0.6f);
-  set.add_cylinder(arm_height - arm, arm_height + arm, 0.06f, surface);
+  set.add_prism(arm_height - arm, arm_height + arm, 0.06f, 8, surface);
 }
 
 void add_fence(GeometrySet& set, const Eigen::Isometry3f& pose, float length, float height,

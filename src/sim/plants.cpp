@@ -6,6 +6,10 @@
 namespace adaptive_lego_loam::sim {
 namespace {
 
+// Trunks and limbs are prisms: a plant's scene then holds triangles only, which Embree traces
+// faster than triangles and curves together. 12 sides: normals within 15 deg of a cylinder's.
+constexpr int kWoodSides = 12;
+
 struct Facet {
   Eigen::Vector3f centre;
   Eigen::Vector3f u, v;  // in-plane axes
@@ -67,18 +71,18 @@ Facet blown(const Facet& facet, float jitter, Rng& rng) {
 
 void add_wood(GeometrySet& set, const PlantShape& shape, uint32_t surface, Rng& rng) {
   const float top = shape.crown_base + 0.6f * shape.crown_height;
-  set.add_cylinder(Eigen::Vector3f(0, 0, -0.3f), Eigen::Vector3f(0, 0, top), shape.trunk_radius,
-                   surface);
+  set.add_prism(Eigen::Vector3f(0, 0, -0.3f), Eigen::Vector3f(0, 0, top), shape.trunk_radius,
+                kWoodSides, surface);
   const int branches = rng.integer(3, 5);
   for (int i = 0; i < branches; ++i) {
     const float height =
         shape.crown_base + static_cast<float>(rng.uniform(0.1, 0.5)) * shape.crown_height;
     const float angle = static_cast<float>(rng.uniform(0.0, 2.0 * M_PI));
     const float reach = 0.6f * shape.crown_radius;
-    set.add_cylinder(
+    set.add_prism(
         Eigen::Vector3f(0, 0, height),
         Eigen::Vector3f(reach * std::cos(angle), reach * std::sin(angle), height + 0.5f * reach),
-        0.4f * shape.trunk_radius, surface);
+        0.4f * shape.trunk_radius, kWoodSides, surface);
   }
 }
 

@@ -13,21 +13,23 @@ namespace {
 
 constexpr float kPlantGridCell = 32.0f;
 constexpr int kPacketSize = 16;
+constexpr unsigned kNoInstance = RTC_INVALID_GEOMETRY_ID;
 
-// An Embree scene made from one GeometrySet: triangles and capped cylinders.
+// An Embree scene made from one GeometrySet: a triangle geometry per surface (the hit's geometry
+// id then gives its surface) and the capped cylinders.
 struct SubScene {
   RTCScene scene = nullptr;
   const GeometrySet* geometry = nullptr;
-  unsigned triangle_geometry = RTC_INVALID_GEOMETRY_ID;
-  unsigned cylinder_geometry = RTC_INVALID_GEOMETRY_ID;
+  std::vector<uint32_t> geometry_surfaces;  // by geometry id; kCylinders: look up the cylinder
+  static constexpr uint32_t kCylinders = 0xFFFFFFFFu;
 
   uint32_t surface(unsigned geometry_id, unsigned primitive) const {
-    return geometry_id == triangle_geometry ? geometry->triangle_surfaces[primitive]
-                                            : geometry->cylinders[primitive].surface;
+    const uint32_t surface = geometry_surfaces[geometry_id];
+    return surface != kCylinders ? surface : geometry->cylinders[primitive].surface;
   }
 };
 
-// One instance of the top-level scene; its index is the instance's geometry id there.
+// One instance of the top-level scene, found by its geometry id there.
 struct InstanceRecord {
   const SubScene* sub = nullptr;
   Eigen::Matrix3f normal_matrix = Eigen::Matrix3f::Identity();
@@ -53,11 +55,21 @@ struct RayCaster::Impl {
   std::vector<SubScene> car_scenes;
   std::map<std::pair<int, int>, std::vector<int>> plants_by_cell;
 
-  // The prepared frame.
+  // The top-level scene lives as long as the caster: an object keeps its instance while it is in
+  // reach, and each frame only moves it (wind state, sway, traffic) and rebuilds the top level.
   RTCScene top = nullptr;
-  std::vector<InstanceRecord> records;
-  std::vector<GeometrySet> walker_geometry_now;
-  std::vector<SubScene> walker_scenes_now;
+  std::vector<InstanceRecord> records;  // by geometry id in `top`
+  std::map<TileKey, unsigned> tile_instances;
+  std::vector<unsigned> plant_instances;  // per plant; kNoInstance when out of reach
+  std::vector<unsigned> car_instances;    // per moving car
+  std::vector<int> plants_in_reach, plants_in_reach_before;
+  std::vector<int> cars_in_reach, cars_in_reach_before;
+  std::vector<unsigned> walker_instances;  // put in anew every frame, in the gait's pose
+  std::map<std::pair<uint32_t, int>, SubScene> walker_scenes;  // by (surface, pose)
+  std::vector<std::unique_ptr<GeometrySet>> walker_geometry;   // what they were built from
+  int frame_stamp = 0;
+  bool prepared = false;
+  std::vector<int> plant_seen, car_seen;  // frame_stamp when last put in this frame's scene
 
   void check_device(const char* what) {
     if (rtcGetDeviceError(device) != RTC_ERROR_NONE || !device_error.empty()) {
@@ -72,28 +84,40 @@ struct RayCaster::Impl {
     sub.scene = rtcNewScene(device);
     if (watertight) rtcSetSceneFlags(sub.scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(sub.scene, quality);
-    if (!set.triangles.empty()) sub.triangle_geometry = attach_triangles(sub.scene, set);
-    if (!set.cylinders.empty()) sub.cylinder_geometry = attach_cylinders(sub.scene, set);
+    std::map<uint32_t, std::vector<uint32_t>> by_surface;  // surface -> its triangles
+    for (std::size_t i = 0; i < set.triangles.size(); ++i)
+      by_surface[set.triangle_surfaces[i]].push_back(static_cast<uint32_t>(i));
+    for (const auto& [surface, triangles] : by_surface)
+      note_geometry(sub, attach_triangles(sub.scene, set, triangles), surface);
+    if (!set.cylinders.empty())
+      note_geometry(sub, attach_cylinders(sub.scene, set), SubScene::kCylinders);
     rtcCommitScene(sub.scene);
     check_device("building a scene");
     return sub;
   }
 
-  unsigned attach_triangles(RTCScene scene, const GeometrySet& set) {
+  static void note_geometry(SubScene& sub, unsigned id, uint32_t surface) {
+    if (id >= sub.geometry_surfaces.size()) sub.geometry_surfaces.resize(id + 1, 0);
+    sub.geometry_surfaces[id] = surface;
+  }
+
+  // The triangles `which` of `set`, with their own copies of their vertices.
+  unsigned attach_triangles(RTCScene scene, const GeometrySet& set,
+                            const std::vector<uint32_t>& which) {
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(
         rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                3 * sizeof(float), set.vertices.size()));
-    for (std::size_t i = 0; i < set.vertices.size(); ++i) {
-      for (int k = 0; k < 3; ++k)
-        vertices[3 * i + k] = set.vertices[i][k];
-    }
-    auto* indices = static_cast<uint32_t*>(
-        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                3 * sizeof(uint32_t), set.triangles.size()));
-    for (std::size_t i = 0; i < set.triangles.size(); ++i) {
-      for (int k = 0; k < 3; ++k)
-        indices[3 * i + k] = set.triangles[i][k];
+                                3 * sizeof(float), 3 * which.size()));
+    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), which.size()));
+    for (std::size_t i = 0; i < which.size(); ++i) {
+      for (int corner = 0; corner < 3; ++corner) {
+        const Eigen::Vector3f& vertex = set.vertices[set.triangles[which[i]][corner]];
+        const std::size_t k = 3 * i + corner;
+        for (int axis = 0; axis < 3; ++axis)
+          vertices[3 * k + axis] = vertex[axis];
+        indices[k] = static_cast<uint32_t>(k);
+      }
     }
     return commit_and_attach(scene, geometry);
   }
@@ -130,24 +154,49 @@ struct RayCaster::Impl {
     return id;
   }
 
-  void add_instance(const SubScene& sub, const Eigen::Affine3f& transform, uint16_t instance) {
-    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+  // Puts `sub` at `transform` into the top-level scene: into the instance `id` when it has one
+  // (kNoInstance: a new one). Returns the instance's id.
+  unsigned place(unsigned id, const SubScene& sub, const Eigen::Affine3f& transform,
+                 uint16_t instance) {
+    RTCGeometry geometry;
+    if (id == kNoInstance) {
+      geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    } else {
+      geometry = rtcGetGeometry(top, id);
+    }
     rtcSetGeometryInstancedScene(geometry, sub.scene);
-    Eigen::Matrix<float, 3, 4> matrix = transform.matrix().topRows<3>();  // column-major storage
+    const Eigen::Matrix<float, 3, 4> matrix = transform.matrix().topRows<3>();  // column-major
     rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, matrix.data());
-    const unsigned id = commit_and_attach(top, geometry);
-    if (id != records.size()) throw std::logic_error("embree: unexpected instance id");
-    records.push_back({&sub, transform.linear().inverse().transpose(), instance});
+    if (id == kNoInstance) {
+      id = commit_and_attach(top, geometry);
+    } else {
+      rtcCommitGeometry(geometry);
+    }
+    if (id >= records.size()) records.resize(id + 1);
+    records[id] = {&sub, transform.linear().inverse().transpose(), instance};
+    return id;
+  }
+
+  void remove(unsigned& id) {
+    if (id == kNoInstance) return;
+    rtcDetachGeometry(top, id);
+    records[id] = InstanceRecord();
+    id = kNoInstance;
   }
 
   bool box_in_reach(const Eigen::AlignedBox3f& box, const Eigen::Vector3f& sensor) const {
     return box.exteriorDistance(sensor) <= reach;
   }
 
-  void add_tiles(const Eigen::Vector3f& sensor) {
+  void update_tiles(const Eigen::Vector3f& sensor) {
     for (const auto& [key, bounds] : tile_bounds) {
       auto built = tile_scenes.find(key);
+      auto placed = tile_instances.find(key);
       if (!box_in_reach(bounds, sensor)) {
+        if (placed != tile_instances.end()) {
+          remove(placed->second);
+          tile_instances.erase(placed);
+        }
         // Far behind: free it (it is rebuilt if the path comes back).
         if (built != tile_scenes.end() &&
             bounds.exteriorDistance(sensor) > reach + 2 * world->tile_size) {
@@ -156,18 +205,20 @@ struct RayCaster::Impl {
         }
         continue;
       }
+      if (placed != tile_instances.end()) continue;  // static: nothing to update
       if (built == tile_scenes.end()) {
         built = tile_scenes.emplace(key, build(world->tiles.at(key), RTC_BUILD_QUALITY_HIGH, true))
                     .first;
       }
-      add_instance(built->second, Eigen::Affine3f::Identity(), 0);
+      tile_instances[key] = place(kNoInstance, built->second, Eigen::Affine3f::Identity(), 0);
     }
   }
 
-  void add_plants(int frame, double time, const Eigen::Vector3f& sensor) {
+  void update_plants(int frame, double time, const Eigen::Vector3f& sensor) {
     const auto [cx, cy] = plant_cell(sensor);
     const int span = static_cast<int>(std::ceil(reach / kPlantGridCell)) + 1;
     const float sway_amplitude = world->wind.sway_deg * static_cast<float>(M_PI) / 180.0f;
+    plants_in_reach.clear();
     for (int ix = cx - span; ix <= cx + span; ++ix) {
       for (int iy = cy - span; iy <= cy + span; ++iy) {
         const auto cell = plants_by_cell.find({ix, iy});
@@ -189,16 +240,26 @@ struct RayCaster::Impl {
           transform.rotate(Eigen::AngleAxisf(sway, Eigen::Vector3f::UnitY()));
           transform.rotate(Eigen::AngleAxisf(plant.yaw, Eigen::Vector3f::UnitZ()));
           transform.scale(plant.scale);
-          add_instance(plant_scene(plant.prototype, state), transform, plant.instance);
+          plant_instances[index] =
+              place(plant_instances[index], plant_scene(plant.prototype, state), transform,
+                    plant.instance);
+          plant_seen[index] = frame_stamp;
+          plants_in_reach.push_back(index);
         }
       }
     }
+    for (int index : plants_in_reach_before) {
+      if (plant_seen[index] != frame_stamp) remove(plant_instances[index]);
+    }
+    std::swap(plants_in_reach, plants_in_reach_before);
   }
 
+  // Medium quality: as fast to trace as high quality (spatial splits) for small facets, and
+  // several times faster to build.
   const SubScene& plant_scene(int prototype, int state) {
     SubScene& sub = plant_scenes[prototype][state];
     if (!sub.scene)
-      sub = build(world->plant_prototypes[prototype].wind_states[state], RTC_BUILD_QUALITY_HIGH);
+      sub = build(world->plant_prototypes[prototype].wind_states[state], RTC_BUILD_QUALITY_MEDIUM);
     return sub;
   }
 
@@ -212,48 +273,56 @@ struct RayCaster::Impl {
     return (pose.translation() - sensor).norm() <= reach + 5.0f;
   }
 
-  void add_movers(double time, const Eigen::Vector3f& sensor) {
+  void update_movers(double time, const Eigen::Vector3f& sensor) {
+    for (unsigned& id : walker_instances)
+      remove(id);
+    walker_instances.clear();
     if (!world->path) return;
     Eigen::Affine3f pose;
-    for (const MovingCar& car : world->moving_cars) {
+    cars_in_reach.clear();
+    for (std::size_t i = 0; i < world->moving_cars.size(); ++i) {
+      const MovingCar& car = world->moving_cars[i];
       if (!mover_pose(car.motion, time, sensor, pose)) continue;
-      add_instance(car_scenes[car.prototype], pose, car.instance);
+      car_instances[i] = place(car_instances[i], car_scenes[car.prototype], pose, car.instance);
+      car_seen[i] = frame_stamp;
+      cars_in_reach.push_back(static_cast<int>(i));
     }
-    std::vector<std::pair<const Walker*, Eigen::Affine3f>> active;
+    for (int index : cars_in_reach_before) {
+      if (car_seen[index] != frame_stamp) remove(car_instances[index]);
+    }
+    std::swap(cars_in_reach, cars_in_reach_before);
+
     for (const Walker& walker : world->walkers) {
-      if (mover_pose(walker.motion, time, sensor, pose)) active.emplace_back(&walker, pose);
+      if (!mover_pose(walker.motion, time, sensor, pose)) continue;
+      pose.scale(walker.height / kWalkerHeight);
+      walker_instances.push_back(place(kNoInstance,
+                                       walker_scene(walker.surface, walker_pose(walker, time)),
+                                       pose, walker.instance));
     }
-    walker_geometry_now.reserve(active.size());  // SubScenes point into it: no reallocation
-    for (const auto& [walker, walker_pose] : active) {
-      walker_geometry_now.push_back(walker_geometry(*walker, time));
-      walker_scenes_now.push_back(build(walker_geometry_now.back(), RTC_BUILD_QUALITY_LOW));
-    }
-    for (std::size_t i = 0; i < active.size(); ++i)
-      add_instance(walker_scenes_now[i], active[i].second, active[i].first->instance);
   }
 
-  void release_frame() {
-    if (top) rtcReleaseScene(top);
-    top = nullptr;
-    for (SubScene& sub : walker_scenes_now)
-      rtcReleaseScene(sub.scene);
-    walker_scenes_now.clear();
-    walker_geometry_now.clear();
-    records.clear();
+  const SubScene& walker_scene(uint32_t surface, int pose) {
+    auto found = walker_scenes.find({surface, pose});
+    if (found == walker_scenes.end()) {
+      auto geometry = std::make_unique<GeometrySet>(walker_pose_geometry(pose, surface));
+      const SubScene sub = build(*geometry, RTC_BUILD_QUALITY_MEDIUM);
+      walker_geometry.push_back(std::move(geometry));
+      found = walker_scenes.emplace(std::make_pair(surface, pose), sub).first;
+    }
+    return found->second;
   }
 
-  Hit make_hit(const RTCHit& hit, float distance, const Eigen::Vector3f& direction) const {
-    Hit result;
-    const InstanceRecord& record = records[hit.instID[0]];
-    const Surface& surface = world->surfaces[record.sub->surface(hit.geomID, hit.primID)];
+  void make_hit(unsigned instance_id, unsigned geometry_id, unsigned primitive,
+                const Eigen::Vector3f& normal, float distance, const Eigen::Vector3f& direction,
+                Hit& result) const {
+    const InstanceRecord& record = records[instance_id];
+    const Surface& surface = world->surfaces[record.sub->surface(geometry_id, primitive)];
     result.distance = distance;
-    result.normal =
-        (record.normal_matrix * Eigen::Vector3f(hit.Ng_x, hit.Ng_y, hit.Ng_z)).normalized();
+    result.normal = (record.normal_matrix * normal).normalized();
     if (result.normal.dot(direction) > 0.0f) result.normal = -result.normal;
     result.label =
         pack_label(surface.semantic, surface.instance ? surface.instance : record.instance);
     result.reflectivity = surface.reflectivity;
-    return result;
   }
 };
 
@@ -280,11 +349,21 @@ RayCaster::RayCaster(std::shared_ptr<const World> world, float reach) : impl_(ne
     d.car_scenes.push_back(d.build(car, RTC_BUILD_QUALITY_HIGH));
   for (std::size_t i = 0; i < d.world->plants.size(); ++i)
     d.plants_by_cell[plant_cell(d.world->plants[i].base)].push_back(static_cast<int>(i));
+  d.plant_instances.assign(d.world->plants.size(), kNoInstance);
+  d.plant_seen.assign(d.world->plants.size(), -1);
+  d.car_instances.assign(d.world->moving_cars.size(), kNoInstance);
+  d.car_seen.assign(d.world->moving_cars.size(), -1);
+  d.top = rtcNewScene(d.device);
+  rtcSetSceneFlags(d.top, RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(d.top, RTC_BUILD_QUALITY_LOW);
+  d.check_device("creating the top-level scene");
 }
 
 RayCaster::~RayCaster() {
   Impl& d = *impl_;
-  d.release_frame();
+  rtcReleaseScene(d.top);
+  for (auto& [key, sub] : d.walker_scenes)
+    rtcReleaseScene(sub.scene);
   for (auto& [key, sub] : d.tile_scenes)
     rtcReleaseScene(sub.scene);
   for (auto& states : d.plant_scenes) {
@@ -299,31 +378,35 @@ RayCaster::~RayCaster() {
 
 void RayCaster::prepare(int frame, double time, const Eigen::Vector3d& sensor_position) {
   Impl& d = *impl_;
-  d.release_frame();
   const Eigen::Vector3f sensor = sensor_position.cast<float>();
-  d.top = rtcNewScene(d.device);
-  rtcSetSceneBuildQuality(d.top, RTC_BUILD_QUALITY_LOW);
-  d.add_tiles(sensor);
-  d.add_plants(frame, time, sensor);
-  d.add_movers(time, sensor);
+  ++d.frame_stamp;
+  d.prepared = false;
+  d.update_tiles(sensor);
+  d.update_plants(frame, time, sensor);
+  d.update_movers(time, sensor);
   rtcCommitScene(d.top);
   d.check_device("building the frame's scene");
+  d.prepared = true;
 }
 
 void RayCaster::cast(const std::vector<Ray>& rays, std::vector<Hit>& hits) const {
+  hits.resize(rays.size());
+  cast(rays.data(), rays.size(), hits.data());
+}
+
+void RayCaster::cast(const Ray* rays, std::size_t count, Hit* hits) const {
   const Impl& d = *impl_;
-  if (!d.top) throw std::logic_error("RayCaster::cast before prepare");
-  hits.assign(rays.size(), Hit());
+  if (!d.prepared) throw std::logic_error("RayCaster::cast before prepare");
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRayHit16 packet;
   alignas(64) int valid[kPacketSize];
-  for (std::size_t first = 0; first < rays.size(); first += kPacketSize) {
-    const int count = static_cast<int>(std::min<std::size_t>(kPacketSize, rays.size() - first));
+  for (std::size_t first = 0; first < count; first += kPacketSize) {
+    const int lanes = static_cast<int>(std::min<std::size_t>(kPacketSize, count - first));
     for (int i = 0; i < kPacketSize; ++i) {
-      valid[i] = i < count ? -1 : 0;
-      const Ray& ray = rays[first + std::min(i, count - 1)];
+      valid[i] = i < lanes ? -1 : 0;
+      const Ray& ray = rays[first + std::min(i, lanes - 1)];
       packet.ray.org_x[i] = ray.origin.x();
       packet.ray.org_y[i] = ray.origin.y();
       packet.ray.org_z[i] = ray.origin.z();
@@ -340,16 +423,15 @@ void RayCaster::cast(const std::vector<Ray>& rays, std::vector<Hit>& hits) const
       packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
     rtcIntersect16(valid, d.top, &context, &packet);
-    for (int i = 0; i < count; ++i) {
-      if (packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
-      RTCHit hit;
-      hit.Ng_x = packet.hit.Ng_x[i];
-      hit.Ng_y = packet.hit.Ng_y[i];
-      hit.Ng_z = packet.hit.Ng_z[i];
-      hit.primID = packet.hit.primID[i];
-      hit.geomID = packet.hit.geomID[i];
-      hit.instID[0] = packet.hit.instID[0][i];
-      hits[first + i] = d.make_hit(hit, packet.ray.tfar[i], rays[first + i].direction);
+    for (int i = 0; i < lanes; ++i) {
+      Hit& hit = hits[first + i];
+      if (packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
+        hit = Hit();
+        continue;
+      }
+      d.make_hit(packet.hit.instID[0][i], packet.hit.geomID[i], packet.hit.primID[i],
+                 Eigen::Vector3f(packet.hit.Ng_x[i], packet.hit.Ng_y[i], packet.hit.Ng_z[i]),
+                 packet.ray.tfar[i], rays[first + i].direction, hit);
     }
   }
 }

@@ -31,8 +31,10 @@ ScenarioParams default_scenario(ScenarioKind kind) {
   switch (kind) {
     case ScenarioKind::kUrban:
     case ScenarioKind::kLoop:
-      // Defaults of ScenarioParams: a two-lane street with parking lanes and sidewalks.
+      // Defaults of ScenarioParams: a two-lane street with parking lanes and sidewalks, houses and
+      // blocks, and side streets at junctions about every 100 m.
       p.cruise_speed_mps = kind == ScenarioKind::kLoop ? 8.0 : 10.0;
+      p.junctions_per_km = 10.0;
       break;
     case ScenarioKind::kHighway:
       // Two carriageways of three lanes, guard rails, sparse shrubs: weak constraint along x.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "adaptive_lego_loam/sim/objects.h"
@@ -23,6 +24,8 @@ enum Stream : uint64_t {
   kShakeStream,
   kMoverStream,
   kSpeedStream,
+  kRoadsideStream,
+  kJunctionStream,
 };
 
 constexpr int kTreeShapes = 4, kBushShapes = 4, kCarShapes = 3;
@@ -150,12 +153,13 @@ class Placer {
  public:
   explicit Placer(const Path& path) : path_(path) {}
 
-  // Takes an oriented rectangle of the ground when it overlaps nothing taken before and every
-  // part of it keeps `road_clearance` from the path's centreline (0: no such check).
+  // Takes an oriented rectangle of the ground when it overlaps nothing taken before nor ground
+  // reserved for another owner, and every part of it keeps `road_clearance` from the centreline
+  // of `road` (default: the path; 0: no such check).
   bool claim(const Eigen::Vector2d& centre, double yaw, const Eigen::Vector2d& half,
-             double road_clearance) {
-    const Eigen::Vector2d ex(std::cos(yaw), std::sin(yaw)), ey(-std::sin(yaw), std::cos(yaw));
+             double road_clearance, const Path* road = nullptr, int owner = 0) {
     if (road_clearance > 0.0) {
+      const Eigen::Vector2d ex(std::cos(yaw), std::sin(yaw)), ey(-std::sin(yaw), std::cos(yaw));
       const int nx = static_cast<int>(std::ceil(2.0 * half.x())) + 1;
       const int ny = static_cast<int>(std::ceil(2.0 * half.y())) + 1;
       Path::Nearest unused;
@@ -163,10 +167,32 @@ class Placer {
         for (int j = 0; j < ny; ++j) {
           const Eigen::Vector2d p = centre + (-half.x() + 2.0 * half.x() * i / (nx - 1)) * ex +
                                     (-half.y() + 2.0 * half.y() * j / (ny - 1)) * ey;
-          if (path_.nearest(p, road_clearance, unused)) return false;
+          if ((road ? *road : path_).nearest(p, road_clearance, unused)) return false;
         }
       }
     }
+    const std::vector<int64_t> cells = cells_of(centre, yaw, half);
+    for (int64_t key : cells) {
+      if (taken_.count(key)) return false;
+      const auto reserved = reserved_.find(key);
+      if (reserved != reserved_.end() && reserved->second != owner) return false;
+    }
+    taken_.insert(cells.begin(), cells.end());
+    return true;
+  }
+
+  // Keeps a rectangle for `owner` (a side street's own layout): others cannot claim it.
+  void reserve(const Eigen::Vector2d& centre, double yaw, const Eigen::Vector2d& half, int owner) {
+    for (int64_t key : cells_of(centre, yaw, half))
+      reserved_.emplace(key, owner);
+  }
+
+ private:
+  static constexpr double kCell = 0.5;
+
+  std::vector<int64_t> cells_of(const Eigen::Vector2d& centre, double yaw,
+                                const Eigen::Vector2d& half) const {
+    const Eigen::Vector2d ex(std::cos(yaw), std::sin(yaw)), ey(-std::sin(yaw), std::cos(yaw));
     std::vector<int64_t> cells;
     const double reach = half.norm();
     for (double x = std::floor((centre.x() - reach) / kCell); x * kCell <= centre.x() + reach;
@@ -178,20 +204,15 @@ class Placer {
         if (std::abs(offset.dot(ex)) > half.x() + 0.5 * kCell ||
             std::abs(offset.dot(ey)) > half.y() + 0.5 * kCell)
           continue;
-        const int64_t key =
-            (static_cast<int64_t>(x) << 32) ^ (static_cast<int64_t>(y) & 0xFFFFFFFFll);
-        if (taken_.count(key)) return false;
-        cells.push_back(key);
+        cells.push_back((static_cast<int64_t>(x) << 32) ^ (static_cast<int64_t>(y) & 0xFFFFFFFFll));
       }
     }
-    taken_.insert(cells.begin(), cells.end());
-    return true;
+    return cells;
   }
 
- private:
-  static constexpr double kCell = 0.5;
   const Path& path_;
   std::unordered_set<int64_t> taken_;
+  std::unordered_map<int64_t, int> reserved_;
 };
 
 // What every layout needs while it places objects.
@@ -203,8 +224,16 @@ struct Layout {
   Rng& rng;
   Placer& placer;
   std::vector<int> tree_prototypes, bush_prototypes;
+  double start = 0.0;  // objects along the street from here (side streets: past the corner)
+  int owner = 0;       // of the ground it may claim (Placer::reserve)
 
   double length() const { return path.length(); }
+
+  // Placer::claim with the clearance kept from this layout's street.
+  bool claim(const Eigen::Vector2d& centre, double yaw, const Eigen::Vector2d& half,
+             double road_clearance) {
+    return placer.claim(centre, yaw, half, road_clearance, &path, owner);
+  }
 
   Eigen::Vector2d beside(double s, double lateral) const {
     const Path::Frame f = path.at(s);
@@ -230,7 +259,7 @@ struct Layout {
 
   void add_plant(const std::vector<int>& prototypes, const Eigen::Vector2d& xy, double footprint,
                  double road_clearance) {
-    if (!placer.claim(xy, 0.0, Eigen::Vector2d::Constant(footprint), road_clearance)) return;
+    if (!claim(xy, 0.0, Eigen::Vector2d::Constant(footprint), road_clearance)) return;
     Plant plant;
     plant.prototype = prototypes[rng.integer(0, static_cast<int>(prototypes.size()) - 1)];
     plant.base = at_ground(xy);
@@ -245,26 +274,46 @@ struct Layout {
 // ---------------------------------------------------------------------------------------------
 // Objects common to several scenarios.
 
+// Houses and blocks along one side of the street. Houses (`house_share` of the lots) are small,
+// set back behind front gardens, a little askew and spaced out, so that their side walls show;
+// blocks are long, close to the sidewalk and mostly joined.
 void add_buildings(Layout& l, double side) {
   const ScenarioParams& p = l.p;
   const double clearance = p.road_half_width + p.sidewalk_width + 0.3;
-  for (double s = l.rng.uniform(0.0, 10.0); s < l.length();) {
-    const double frontage = l.rng.uniform(10.0, 30.0), depth = l.rng.uniform(10.0, 22.0);
-    const double height = l.rng.chance(0.2) ? l.rng.uniform(20.0, 40.0) : l.rng.uniform(6.0, 20.0);
-    const double setback = l.rng.uniform(0.5, 4.0);
-    const double lateral = side * (clearance + setback + 0.5 * depth);
+  for (double s = l.start + l.rng.uniform(0.0, 10.0); s < l.length();) {
+    const bool house = l.rng.chance(p.house_share);
+    double frontage, depth, height, setback, yaw_offset;
+    if (house) {
+      frontage = l.rng.uniform(8.0, 14.0);
+      depth = l.rng.uniform(8.0, 12.0);
+      height = l.rng.uniform(6.0, 10.0);
+      setback = l.rng.uniform(2.0, 9.0);
+      yaw_offset =
+          l.rng.chance(0.85) ? l.rng.normal(0.0, 0.05) : l.rng.sign() * l.rng.uniform(0.17, 0.5);
+    } else {
+      frontage = l.rng.uniform(15.0, 35.0);
+      depth = l.rng.uniform(10.0, 18.0);
+      height = l.rng.chance(0.2) ? l.rng.uniform(20.0, 40.0) : l.rng.uniform(9.0, 20.0);
+      setback = l.rng.uniform(0.5, 4.0);
+      yaw_offset = l.rng.normal(0.0, 0.015);
+    }
+    // Half the extent of the turned footprint across the street, to keep it off the sidewalk.
+    const double reach =
+        0.5 * (std::abs(std::sin(yaw_offset)) * frontage + std::abs(std::cos(yaw_offset)) * depth);
+    const double lateral = side * (clearance + setback + reach);
     const Path::Frame f = l.path.at(s + 0.5 * frontage);
     const Eigen::Vector2d centre = (f.position + lateral * f.left).head<2>();
-    if (!l.placer.claim(centre, f.heading, Eigen::Vector2d(0.5 * frontage, 0.5 * depth),
-                        clearance)) {
+    const double yaw = f.heading + yaw_offset;
+    if (!l.claim(centre, yaw, Eigen::Vector2d(0.5 * frontage, 0.5 * depth), clearance)) {
       s += 4.0;
       continue;
     }
+    const Eigen::Vector2d along(std::cos(yaw), std::sin(yaw)),
+        across(-std::sin(yaw), std::cos(yaw));
     double lowest = 1e9, highest = -1e9;
     for (double u : {-0.5, 0.5}) {
       for (double v : {-0.5, 0.5}) {
-        const double z = l.terrain.height(centre + u * frontage * f.forward.head<2>() +
-                                          v * depth * f.left.head<2>());
+        const double z = l.terrain.height(centre + u * frontage * along + v * depth * across);
         lowest = std::min(lowest, z);
         highest = std::max(highest, z);
       }
@@ -272,18 +321,39 @@ void add_buildings(Layout& l, double side) {
     const uint32_t surface = l.world.add_surface(SemanticClass::kBuilding, l.world.new_instance(),
                                                  static_cast<float>(l.rng.uniform(0.3, 0.6)));
     const Eigen::Vector3f base(centre.x(), centre.y(), lowest - 0.5);
-    add_building(l.world.tile_at(base), yaw_pose(base, f.heading),
+    add_building(l.world.tile_at(base), yaw_pose(base, static_cast<float>(yaw)),
                  Eigen::Vector3f(frontage, depth, height + highest - lowest + 0.5),
-                 l.rng.chance(0.3) ? 1.5f : 0.0f, surface);
-    const double gap = l.rng.chance(0.25) ? l.rng.uniform(8.0, 20.0) : l.rng.uniform(0.0, 3.0);
+                 !house && l.rng.chance(0.3) ? 1.5f : 0.0f, surface);
+    double gap;
+    if (house) {
+      gap = l.rng.chance(0.2) ? l.rng.uniform(0.0, 1.0) : l.rng.uniform(3.0, 9.0);
+    } else {
+      gap = l.rng.chance(0.25) ? l.rng.uniform(8.0, 20.0) : l.rng.uniform(0.0, 3.0);
+    }
     const double gap_start = s + frontage;
+    if (house && gap > 1.0 && l.rng.chance(p.fences_share)) {
+      // The boundary between two gardens: a fence from the sidewalk back past the house.
+      const Path::Frame g = l.path.at(gap_start + 0.5 * gap);
+      const double from = clearance + 0.3, to = clearance + setback + 2.0 * reach + 2.0;
+      const Eigen::Vector2d start = (g.position + side * from * g.left).head<2>();
+      const Eigen::Vector2d run = (side * g.left).head<2>();
+      const double length = to - from;
+      if (l.claim(start + 0.5 * length * run, std::atan2(run.y(), run.x()),
+                  Eigen::Vector2d(0.5 * length, 0.1), clearance - 0.2)) {
+        const uint32_t fence =
+            l.world.add_surface(SemanticClass::kFence, l.world.new_instance(), 0.4f);
+        add_fence(l.world.tile_at(l.at_ground(start)),
+                  yaw_pose(l.at_ground(start), static_cast<float>(std::atan2(run.y(), run.x()))),
+                  static_cast<float>(length), static_cast<float>(l.rng.uniform(1.0, 1.8)), fence);
+      }
+    }
     if (gap > 6.0) {
       if (l.rng.chance(p.fences_share)) {
         const Path::Frame g = l.path.at(gap_start + 0.5);
         const double fence_lateral = side * (clearance + 0.4);
         const Eigen::Vector2d start = (g.position + fence_lateral * g.left).head<2>();
-        if (l.placer.claim(start + 0.5 * (gap - 1.0) * g.forward.head<2>(), g.heading,
-                           Eigen::Vector2d(0.5 * (gap - 1.0), 0.1), clearance - 0.2)) {
+        if (l.claim(start + 0.5 * (gap - 1.0) * g.forward.head<2>(), g.heading,
+                    Eigen::Vector2d(0.5 * (gap - 1.0), 0.1), clearance - 0.2)) {
           const uint32_t fence =
               l.world.add_surface(SemanticClass::kFence, l.world.new_instance(), 0.4f);
           add_fence(l.world.tile_at(l.at_ground(start)), yaw_pose(l.at_ground(start), g.heading),
@@ -303,11 +373,12 @@ void add_buildings(Layout& l, double side) {
 void add_street_furniture(Layout& l, double side) {
   if (l.p.poles_per_100m <= 0.0) return;
   const double lateral = side * (l.p.road_half_width + 0.4);
-  for (double s = l.rng.uniform(0.0, 20.0); s < l.length(); s += l.step(l.p.poles_per_100m)) {
+  for (double s = l.start + l.rng.uniform(0.0, 20.0); s < l.length();
+       s += l.step(l.p.poles_per_100m)) {
     const Path::Frame f = l.path.at(s);
     const Eigen::Vector2d xy = (f.position + lateral * f.left).head<2>();
     if (on_other_stretch(l.path, xy, s, l.p.road_half_width + 0.5) ||
-        !l.placer.claim(xy, f.heading, Eigen::Vector2d(0.3, 0.3), 0.0))
+        !l.claim(xy, f.heading, Eigen::Vector2d(0.3, 0.3), 0.0))
       continue;
     const uint16_t instance = l.world.new_instance();
     const uint32_t pole = l.world.add_surface(SemanticClass::kPole, instance, 0.5f);
@@ -326,7 +397,7 @@ void add_street_furniture(Layout& l, double side) {
 void add_parked_cars(Layout& l, double side) {
   if (l.p.parked_car_share <= 0.0) return;
   const double lateral = side * (l.p.road_half_width - 1.2);
-  for (double s = l.rng.uniform(0.0, 6.0); s < l.length(); s += l.rng.uniform(5.5, 7.0)) {
+  for (double s = l.start + l.rng.uniform(0.0, 6.0); s < l.length(); s += l.rng.uniform(5.5, 7.0)) {
     if (!l.rng.chance(l.p.parked_car_share)) continue;
     const Path::Frame f = l.path.at(s);
     const Eigen::Vector2d xy =
@@ -334,7 +405,7 @@ void add_parked_cars(Layout& l, double side) {
     const CarShape shape = random_car_shape(l.rng.integer(0, kCarShapes - 1), l.rng);
     const double yaw = f.heading + (side > 0 ? M_PI : 0.0) + l.rng.normal(0.0, 0.03);
     if (on_other_stretch(l.path, xy, s, l.p.road_half_width) ||
-        !l.placer.claim(xy, yaw, Eigen::Vector2d(0.5 * shape.length + 0.3, 0.5 * shape.width), 0.0))
+        !l.claim(xy, yaw, Eigen::Vector2d(0.5 * shape.length + 0.3, 0.5 * shape.width), 0.0))
       continue;
     const uint16_t instance = l.world.new_instance();
     const uint32_t body = l.world.add_surface(SemanticClass::kCar, instance,
@@ -348,7 +419,8 @@ void add_parked_cars(Layout& l, double side) {
 void add_street_trees(Layout& l, double side) {
   if (l.p.trees_per_100m <= 0.0 || l.p.sidewalk_width <= 0.0) return;
   const double lateral = side * (l.p.road_half_width + 1.0);
-  for (double s = l.rng.uniform(0.0, 10.0); s < l.length(); s += l.step(l.p.trees_per_100m)) {
+  for (double s = l.start + l.rng.uniform(0.0, 10.0); s < l.length();
+       s += l.step(l.p.trees_per_100m)) {
     const Eigen::Vector2d xy = l.beside(s, lateral);
     if (on_other_stretch(l.path, xy, s, l.p.road_half_width + l.p.sidewalk_width)) continue;
     l.add_plant(l.tree_prototypes, xy, 0.5, l.p.road_half_width + 0.3);
@@ -359,7 +431,8 @@ void add_street_trees(Layout& l, double side) {
 void add_front_gardens(Layout& l, double side) {
   if (l.p.bushes_per_100m <= 0.0 || l.p.sidewalk_width <= 0.0) return;
   const double clearance = l.p.road_half_width + l.p.sidewalk_width + 0.3;
-  for (double s = l.rng.uniform(0.0, 10.0); s < l.length(); s += l.step(l.p.bushes_per_100m)) {
+  for (double s = l.start + l.rng.uniform(0.0, 10.0); s < l.length();
+       s += l.step(l.p.bushes_per_100m)) {
     const Eigen::Vector2d xy = l.beside(s, side * (clearance + l.rng.uniform(0.3, 2.5)));
     l.add_plant(l.bush_prototypes, xy, 0.5, clearance);
   }
@@ -367,14 +440,14 @@ void add_front_gardens(Layout& l, double side) {
 
 void add_standing_people(Layout& l, double side) {
   if (l.p.standing_people_per_100m <= 0.0) return;
-  for (double s = l.rng.uniform(0.0, 50.0); s < l.length();
+  for (double s = l.start + l.rng.uniform(0.0, 50.0); s < l.length();
        s += l.step(l.p.standing_people_per_100m)) {
     const Path::Frame f = l.path.at(s);
     const double lateral =
         side * (l.p.road_half_width + l.p.sidewalk_width * l.rng.uniform(0.5, 0.9));
     const Eigen::Vector2d xy = (f.position + lateral * f.left).head<2>();
     if (on_other_stretch(l.path, xy, s, l.p.road_half_width + l.p.sidewalk_width) ||
-        !l.placer.claim(xy, 0.0, Eigen::Vector2d(0.35, 0.35), 0.0))
+        !l.claim(xy, 0.0, Eigen::Vector2d(0.35, 0.35), 0.0))
       continue;
     const uint32_t surface =
         l.world.add_surface(SemanticClass::kPerson, l.world.new_instance(), 0.4f);
@@ -385,14 +458,56 @@ void add_standing_people(Layout& l, double side) {
   }
 }
 
-// A guard rail along the path `lateral` m left of the centreline; its posts stand on the side
-// `outward` (+1: left) of the rail, behind it as seen from the road.
-void add_guard_rail(Layout& l, double lateral, double outward) {
+// Sweeps a cross-section along the path over [s0, s1]: `outline` holds (offset to the left of
+// `lateral`, height) points, joined in order (close it by repeating the first). Heights are above
+// the road's centreline, or above the ground under `lateral` when `on_ground`.
+void sweep_outline(Layout& l, double s0, double s1, double lateral,
+                   const std::vector<Eigen::Vector2d>& outline, bool on_ground, uint32_t surface,
+                   bool capped = false) {
+  const double step = l.path.spacing();
+  const int stations = std::max(1, static_cast<int>(std::ceil((s1 - s0) / step)));
+  auto point = [&](const Path::Frame& f, double base, const Eigen::Vector2d& q) -> Eigen::Vector3f {
+    Eigen::Vector3d p = f.position + (lateral + q.x()) * f.left;
+    p.z() = base + q.y();
+    return p.cast<float>();
+  };
+  auto base_of = [&](const Path::Frame& f) {
+    return on_ground ? l.ground((f.position + lateral * f.left).head<2>()) : f.position.z();
+  };
+  Path::Frame a = l.path.at(s0);
+  double base_a = base_of(a);
+  // A convex outline's ends, as fans.
+  const std::size_t corners = outline.size() - (outline.front() == outline.back() ? 1 : 0);
+  auto cap = [&](const Path::Frame& f, double base) {
+    GeometrySet& set = l.world.tile_at(point(f, base, outline.front()));
+    for (std::size_t k = 1; k + 1 < corners; ++k) {
+      set.add_triangle(point(f, base, outline[0]), point(f, base, outline[k]),
+                       point(f, base, outline[k + 1]), surface);
+    }
+  };
+  if (capped) cap(a, base_a);
+  for (int i = 0; i < stations; ++i) {
+    const Path::Frame b = l.path.at(s0 + (s1 - s0) * (i + 1) / stations);
+    const double base_b = base_of(b);
+    GeometrySet& set = l.world.tile_at(point(a, base_a, outline.front()));
+    for (std::size_t k = 0; k + 1 < outline.size(); ++k) {
+      set.add_quad(point(a, base_a, outline[k]), point(b, base_b, outline[k]),
+                   point(b, base_b, outline[k + 1]), point(a, base_a, outline[k + 1]), surface);
+    }
+    a = b;
+    base_a = base_b;
+  }
+  if (capped) cap(a, base_a);
+}
+
+// A guard rail along [s0, s1] of the path `lateral` m left of the centreline; its posts stand on
+// the side `outward` (+1: left) of the rail, behind it as seen from the road.
+void add_guard_rail(Layout& l, double lateral, double outward, double s0, double s1) {
   const uint32_t surface = l.world.add_surface(SemanticClass::kFence, l.world.new_instance(), 0.6f);
-  const int stations = static_cast<int>(l.path.points().size());
-  const int segments = l.path.closed() ? stations : stations - 1;
   const double spacing = l.path.spacing(), thickness = 0.08;
-  for (int i = 0; i < segments; ++i) {
+  const int first = static_cast<int>(std::floor(s0 / spacing));
+  const int last = static_cast<int>(std::ceil(s1 / spacing));
+  for (int i = first; i < last; ++i) {
     const Path::Frame a = l.path.at(i * spacing), b = l.path.at((i + 1) * spacing);
     auto point = [&](const Path::Frame& f, double d, double z) -> Eigen::Vector3f {
       Eigen::Vector3d p = f.position + d * f.left;
@@ -497,7 +612,54 @@ void add_walkers(World& world, const Path& path, const ScenarioParams& p, Rng& r
 // ---------------------------------------------------------------------------------------------
 // Scenario layouts.
 
-void layout_urban(Layout& l) {
+// Along a side street: houses and blocks, parked cars, lights and trees; a building closes its
+// far end.
+void layout_side_street(Layout& main, const SideStreet& street, int owner) {
+  const Path& path = *street.path;
+  const Path::Frame end = path.at(path.length());
+  const double heading = end.heading;
+  ScenarioParams p = main.p;
+  p.road_half_width = street.half_width;
+  p.sidewalk_width = street.sidewalk_width;
+  p.curb_height = street.curb_height;
+  p.parked_car_share = 0.5 * main.p.parked_car_share;
+  p.standing_people_per_100m = 0.0;
+  Layout l{main.world, path,        main.terrain,         p,
+           main.rng,   main.placer, main.tree_prototypes, main.bush_prototypes};
+  l.start = street.corner + 6.0;
+  l.owner = owner;
+  for (double side : {-1.0, 1.0}) {
+    add_parked_cars(l, side);
+    add_street_furniture(l, side);
+    add_street_trees(l, side);
+    add_buildings(l, side);
+    add_front_gardens(l, side);
+  }
+  // The building across its end.
+  const double frontage = main.rng.uniform(16.0, 30.0), depth = main.rng.uniform(10.0, 16.0);
+  const Eigen::Vector2d centre =
+      end.position.head<2>() + (street.sidewalk_width + 2.0 + 0.5 * depth) * end.forward.head<2>();
+  if (l.claim(centre, heading + 0.5 * M_PI, Eigen::Vector2d(0.5 * frontage, 0.5 * depth), 0.0)) {
+    const uint32_t surface =
+        main.world.add_surface(SemanticClass::kBuilding, main.world.new_instance(),
+                               static_cast<float>(main.rng.uniform(0.3, 0.6)));
+    const Eigen::Vector3f base(centre.x(), centre.y(), main.terrain.height(centre) - 0.5);
+    add_building(main.world.tile_at(base), yaw_pose(base, static_cast<float>(heading + 0.5 * M_PI)),
+                 Eigen::Vector3f(frontage, depth, main.rng.uniform(8.0, 18.0)), 0.0f, surface);
+  }
+}
+
+void layout_urban(Layout& l, const std::vector<SideStreet>& side_streets) {
+  // The side streets' ground is theirs: nothing of the main street stands in their mouths.
+  for (std::size_t i = 0; i < side_streets.size(); ++i) {
+    const Path& street = *side_streets[i].path;
+    const Path::Frame end = street.at(street.length());
+    const double length = street.length() + 2.5;
+    l.placer.reserve(
+        street.at(0.0).position.head<2>() + (0.5 * length - 2.5) * end.forward.head<2>(),
+        end.heading, Eigen::Vector2d(0.5 * length, side_streets[i].outer() + 0.3),
+        static_cast<int>(i) + 1);
+  }
   for (double side : {-1.0, 1.0}) {
     add_parked_cars(l, side);
     add_street_furniture(l, side);
@@ -506,14 +668,127 @@ void layout_urban(Layout& l) {
     add_buildings(l, side);
     add_front_gardens(l, side);
   }
+  for (std::size_t i = 0; i < side_streets.size(); ++i)
+    layout_side_street(l, side_streets[i], static_cast<int>(i) + 1);
 }
 
-void layout_highway(Layout& l) {
+// A highway is built in stretches of a few hundred metres, each with its median (double guard
+// rail or concrete barrier) and, on each side, a guard rail in front of open verges and fields,
+// a noise wall, an earth berm or the slope of a cutting.
+enum class Roadside { kOpen, kNoiseWall, kBerm, kCutting };
+
+struct HighwayStretch {
+  double s0 = 0.0, s1 = 0.0;
+  bool concrete_median = false;
+  Roadside roadside[2] = {Roadside::kOpen, Roadside::kOpen};  // [0] right, [1] left
+  double height[2] = {0.0, 0.0};                              // of the noise wall or berm
+};
+
+constexpr double kNoiseWallOffset = 2.5;  // behind the road's edge
+constexpr double kBermToeOffset = 6.0;    // past the ditch
+
+std::vector<HighwayStretch> plan_highway(const Path& path, Rng& rng) {
+  std::vector<HighwayStretch> stretches;
+  for (double s = 0.0; s < path.length();) {
+    HighwayStretch stretch;
+    stretch.s0 = s;
+    stretch.s1 = std::min(path.length(), s + rng.uniform(250.0, 700.0));
+    stretch.concrete_median = rng.chance(0.6);
+    for (int side = 0; side < 2; ++side) {
+      const double draw = rng.uniform();
+      stretch.roadside[side] = draw < 0.5    ? Roadside::kOpen
+                               : draw < 0.65 ? Roadside::kNoiseWall
+                               : draw < 0.8  ? Roadside::kBerm
+                                             : Roadside::kCutting;
+      stretch.height[side] = stretch.roadside[side] == Roadside::kNoiseWall ? rng.uniform(3.0, 5.0)
+                                                                            : rng.uniform(2.5, 6.0);
+    }
+    stretches.push_back(stretch);
+    s = stretch.s1;
+  }
+  return stretches;
+}
+
+std::vector<Berm> highway_berms(const std::vector<HighwayStretch>& stretches, double half_width) {
+  std::vector<Berm> berms;
+  for (const HighwayStretch& stretch : stretches) {
+    for (int side = 0; side < 2; ++side) {
+      if (stretch.roadside[side] != Roadside::kBerm && stretch.roadside[side] != Roadside::kCutting)
+        continue;
+      Berm berm;
+      berm.s0 = stretch.s0;
+      berm.s1 = stretch.s1;
+      berm.side = side == 0 ? -1.0 : 1.0;
+      berm.toe = half_width + kBermToeOffset;
+      berm.height = stretch.height[side];
+      // A cutting: the slope up to the level of the land around, which stays up.
+      if (stretch.roadside[side] == Roadside::kCutting) berm.crest = 60.0;
+      berms.push_back(berm);
+    }
+  }
+  return berms;
+}
+
+// A direction sign on two posts behind the guard rail, its board across the view along the road.
+void add_roadside_sign(Layout& l, double s, double side) {
   const double w = l.p.road_half_width;
-  add_guard_rail(l, -w - 0.3, -1.0);
-  add_guard_rail(l, w + 0.3, 1.0);
-  add_guard_rail(l, -0.35, 1.0);  // the median's two rails, back to back
-  add_guard_rail(l, 0.35, -1.0);
+  const Path::Frame f = l.path.at(s);
+  const float width = static_cast<float>(l.rng.uniform(2.5, 4.0));
+  const float height = static_cast<float>(l.rng.uniform(1.6, 2.4));
+  const Eigen::Vector2d centre = l.beside(s, side * (w + 1.0 + 0.5 * width));
+  if (!l.claim(centre, f.heading, Eigen::Vector2d(0.4, 0.5 * width + 0.3), 0.0)) return;
+  const uint16_t instance = l.world.new_instance();
+  const uint32_t pole = l.world.add_surface(SemanticClass::kPole, instance, 0.5f);
+  const uint32_t board = l.world.add_surface(SemanticClass::kTrafficSign, instance, 0.9f);
+  const Eigen::Vector3f base = l.at_ground(centre);
+  GeometrySet& set = l.world.tile_at(base);
+  const Eigen::Vector3f across = f.left.cast<float>();
+  for (float k : {-0.4f, 0.4f}) {
+    const Eigen::Vector3f foot = base + k * width * across;
+    set.add_prism(foot - Eigen::Vector3f(0, 0, 0.3f), foot + Eigen::Vector3f(0, 0, 2.0f + height),
+                  0.05f, 8, pole);
+  }
+  add_box(set, yaw_pose(base + Eigen::Vector3f(0, 0, 2.0f), static_cast<float>(f.heading)),
+          Eigen::Vector3f(0.05f, width, height), board);
+}
+
+void layout_highway(Layout& l, const std::vector<HighwayStretch>& stretches) {
+  const double w = l.p.road_half_width;
+  const std::vector<Eigen::Vector2d> barrier = {{-0.30, -0.05}, {-0.23, 0.075}, {-0.15, 0.33},
+                                                {-0.075, 0.81}, {0.075, 0.81},  {0.15, 0.33},
+                                                {0.23, 0.075},  {0.30, -0.05}};
+  for (const HighwayStretch& stretch : stretches) {
+    if (stretch.concrete_median) {
+      const uint32_t concrete =
+          l.world.add_surface(SemanticClass::kFence, l.world.new_instance(), 0.5f);
+      sweep_outline(l, stretch.s0, stretch.s1, 0.0, barrier, false, concrete, true);
+    } else {
+      add_guard_rail(l, -0.35, 1.0, stretch.s0, stretch.s1);  // back to back
+      add_guard_rail(l, 0.35, -1.0, stretch.s0, stretch.s1);
+    }
+    for (int index = 0; index < 2; ++index) {
+      const double side = index == 0 ? -1.0 : 1.0;
+      add_guard_rail(l, side * (w + 0.3), side, stretch.s0, stretch.s1);
+      if (stretch.roadside[index] != Roadside::kNoiseWall) continue;
+      const uint32_t wall =
+          l.world.add_surface(SemanticClass::kOtherStructure, l.world.new_instance(), 0.4f);
+      const double top = stretch.height[index];
+      const double lateral = side * (w + kNoiseWallOffset);
+      sweep_outline(l, stretch.s0, stretch.s1, lateral,
+                    {{-0.1, -0.6}, {-0.1, top}, {0.1, top}, {0.1, -0.6}, {-0.1, -0.6}}, true, wall,
+                    true);
+      // Keep plants off it.
+      for (double s = stretch.s0; s < stretch.s1; s += 10.0) {
+        const Path::Frame f = l.path.at(s + 5.0);
+        l.claim((f.position + lateral * f.left).head<2>(), f.heading, Eigen::Vector2d(5.0, 0.6),
+                0.0);
+      }
+    }
+  }
+  for (double side : {-1.0, 1.0}) {
+    for (double s = l.rng.uniform(100.0, 800.0); s < l.length(); s += l.rng.uniform(600.0, 1500.0))
+      add_roadside_sign(l, s, side);
+  }
   for (double side : {-1.0, 1.0}) {
     for (double s = l.rng.uniform(0.0, 30.0); s < l.length(); s += l.step(l.p.bushes_per_100m))
       l.add_plant(l.bush_prototypes, l.beside(s, side * (w + l.rng.uniform(3.0, 35.0))), 0.7,
@@ -546,7 +821,7 @@ void layout_vegetation(Layout& l) {
           side * (w + (shed ? l.rng.uniform(4.0, 10.0) : l.rng.uniform(1.5, 5.0)) + 0.5 * depth);
       const Path::Frame f = l.path.at(s + 0.5 * length);
       const Eigen::Vector2d centre = (f.position + lateral * f.left).head<2>();
-      if (!l.placer.claim(centre, f.heading, Eigen::Vector2d(0.5 * length, 0.5 * depth), w + 1.0))
+      if (!l.claim(centre, f.heading, Eigen::Vector2d(0.5 * length, 0.5 * depth), w + 1.0))
         continue;
       const SemanticClass semantic =
           shed ? SemanticClass::kBuilding : SemanticClass::kOtherStructure;
@@ -563,7 +838,7 @@ void layout_vegetation(Layout& l) {
     for (double s = l.rng.uniform(0.0, 40.0); s < l.length(); s += l.step(l.p.poles_per_100m)) {
       const Path::Frame f = l.path.at(s);
       const Eigen::Vector2d xy = (f.position + lateral * f.left).head<2>();
-      if (!l.placer.claim(xy, 0.0, Eigen::Vector2d(0.3, 0.3), w + 1.0)) continue;
+      if (!l.claim(xy, 0.0, Eigen::Vector2d(0.3, 0.3), w + 1.0)) continue;
       const uint32_t surface =
           l.world.add_surface(SemanticClass::kPole, l.world.new_instance(), 0.3f);
       const Eigen::Vector3f base = l.at_ground(xy);
@@ -660,15 +935,95 @@ double drive_synthetic(const SceneRequest& request, const HeightField& hills, co
   return ego_start_s;
 }
 
+// Side streets branching off the path at junctions, on straight stretches, at 60-140 m, to one
+// side or both, a little askew; none crosses the path elsewhere or another side street. On a
+// closed path (a loop, counter-clockwise) only to the outside.
+std::vector<SideStreet> plan_junctions(const Path& path, const ScenarioParams& p,
+                                       const TerrainModel& terrain, Rng& rng) {
+  std::vector<SideStreet> streets;
+  if (p.junctions_per_km <= 0.0) return streets;
+  const double w = p.road_half_width, mean_gap = 1000.0 / p.junctions_per_km;
+  auto heading_change = [&](double s0, double s1) {
+    return std::abs(std::remainder(path.at(s1).heading - path.at(s0).heading, 2.0 * M_PI));
+  };
+  for (double s = rng.uniform(0.3, 1.0) * mean_gap; s < path.length();
+       s += mean_gap * rng.uniform(0.6, 1.4)) {
+    if (heading_change(s - 25.0, s + 25.0) > 5.0 * M_PI / 180.0) continue;  // on a bend
+    const double draw = rng.uniform();
+    std::vector<double> sides =
+        draw < 0.4 ? std::vector<double>{-1.0, 1.0} : std::vector<double>{draw < 0.7 ? -1.0 : 1.0};
+    for (double side : sides) {
+      if (path.closed() && side > 0.0) continue;
+      SideStreet street;
+      street.corner = p.sidewalk_width;
+      const double skew = std::clamp(rng.normal(0.0, 0.14), -0.35, 0.35);
+      double length = rng.uniform(60.0, 120.0);
+      const Path::Frame f = path.at(s);
+      const Eigen::Vector2d start = (f.position + side * w * f.left).head<2>();
+      const Eigen::Vector2d out = Eigen::Rotation2Dd(skew) * (side * f.left.head<2>()).normalized();
+      // Shorten it before it comes near another stretch of the path or another side street.
+      for (double t = 12.0; t <= length + 10.0; t += 2.0) {
+        const Eigen::Vector2d xy = start + t * out;
+        Path::Nearest unused;
+        bool blocked = path.nearest(xy, w + p.sidewalk_width + street.outer() + 3.0, unused);
+        for (const SideStreet& other : streets)
+          blocked |= other.path->nearest(xy, 2.0 * street.outer() + 3.0, unused);
+        if (blocked) {
+          length = t - 12.0;
+          break;
+        }
+      }
+      if (length < 30.0) continue;
+      std::vector<Eigen::Vector3d> points;
+      for (double t = 0.0; t <= length + 1e-9; t += 1.0) {
+        const Eigen::Vector2d xy = start + t * out;
+        // From the path's height at the junction into the lie of the land.
+        const double blend = std::clamp((t - 3.0) / 17.0, 0.0, 1.0);
+        const double z = (1.0 - blend) * f.position.z() + blend * terrain.reference(xy);
+        points.emplace_back(xy.x(), xy.y(), z);
+      }
+      street.path = std::make_shared<Path>(points, false);
+      streets.push_back(street);
+    }
+  }
+  return streets;
+}
+
+// What lines the road, decided before the terrain is built: the terrain follows berms and side
+// streets.
+struct RoadPlan {
+  std::vector<HighwayStretch> highway;
+  std::vector<SideStreet> side_streets;
+};
+
+RoadPlan plan_road(const SceneRequest& request, const Path& path, TerrainModel& terrain) {
+  const ScenarioParams& p = request.scenario;
+  RoadPlan plan;
+  if (p.kind == ScenarioKind::kHighway) {
+    Rng rng(derive_seed(request.seed, kRoadsideStream));
+    plan.highway = plan_highway(path, rng);
+    terrain.add_berms(highway_berms(plan.highway, p.road_half_width));
+  }
+  if (p.kind == ScenarioKind::kUrban || p.kind == ScenarioKind::kLoop) {
+    Rng rng(derive_seed(request.seed, kJunctionStream));
+    plan.side_streets = plan_junctions(path, p, terrain, rng);
+    terrain.add_side_streets(plan.side_streets);
+  }
+  return plan;
+}
+
 // Road, terrain, objects and moving things along the scene's path.
 std::shared_ptr<World> populate(const SceneRequest& request, const GeneratedScene& scene,
-                                const TerrainModel& terrain, double ego_start_s, bool recorded) {
+                                const TerrainModel& terrain, const RoadPlan& plan,
+                                double ego_start_s, bool recorded) {
   const ScenarioParams& p = request.scenario;
   const Path& path = *scene.path;
   auto world = std::make_shared<World>();
   world->seed = request.seed;
   world->path = scene.path;
-  build_road(*world, path, road_cross_section(p));
+  build_road(*world, path, road_cross_section(p), plan.side_streets);
+  for (const SideStreet& street : plan.side_streets)
+    build_road(*world, *street.path, side_street_cross_section(street), {}, street.corner);
   if (!p.tunnel) build_terrain(*world, path, terrain, request.reach);
 
   Rng plant_rng(derive_seed(request.seed, kPlantStream));
@@ -679,10 +1034,10 @@ std::shared_ptr<World> populate(const SceneRequest& request, const GeneratedScen
   switch (p.kind) {
     case ScenarioKind::kUrban:
     case ScenarioKind::kLoop:
-      layout_urban(layout);
+      layout_urban(layout, plan.side_streets);
       break;
     case ScenarioKind::kHighway:
-      layout_highway(layout);
+      layout_highway(layout, plan.highway);
       break;
     case ScenarioKind::kVegetation:
       layout_vegetation(layout);
@@ -713,8 +1068,9 @@ GeneratedScene generate_scene(const SceneRequest& request) {
   const double ego_start_s = recorded ? drive_recorded(request, shake, scene)
                                       : drive_synthetic(request, hills, shake, scene);
   scene.path_length_m = scene.path->length();
-  const TerrainModel terrain(*scene.path, p, hills, relief, !recorded, request.reach);
-  scene.world = populate(request, scene, terrain, ego_start_s, recorded);
+  TerrainModel terrain(*scene.path, p, hills, relief, !recorded, request.reach);
+  const RoadPlan plan = plan_road(request, *scene.path, terrain);
+  scene.world = populate(request, scene, terrain, plan, ego_start_s, recorded);
   return scene;
 }
 

@@ -21,23 +21,27 @@ LidarSimulator::LidarSimulator(const LidarModel& model, std::shared_ptr<const Wo
       caster_(std::move(world), static_cast<float>(model.sensor().max_range) + 1.0f),
       seed_(seed) {}
 
-void LidarSimulator::make_rays(double sweep_start, const Eigen::Isometry3d& start_pose) {
-  const int beams = model_.beams(), columns = model_.columns();
+void LidarSimulator::make_column_poses(double sweep_start, const Eigen::Isometry3d& start_pose) {
+  const int columns = model_.columns();
   column_poses_.resize(columns);
   for (int column = 0; column < columns; ++column) {
     column_poses_[column] = model_.options().motion_distortion
                                 ? trajectory_->sensor_pose(sweep_start + model_.column_time(column))
                                 : start_pose;
   }
-  rays_.resize(static_cast<std::size_t>(beams) * columns);
+}
+
+void LidarSimulator::make_rays(int first_column, int width) {
+  const int beams = model_.beams();
+  rays_.resize(static_cast<std::size_t>(beams) * width);
   const float max_distance = static_cast<float>(model_.sensor().max_range) + 1.0f;
+  Ray* ray = rays_.data();
   for (int beam = 0; beam < beams; ++beam) {
-    for (int column = 0; column < columns; ++column) {
+    for (int column = first_column; column < first_column + width; ++column, ++ray) {
       const Eigen::Isometry3d& pose = column_poses_[column];
-      Ray& ray = rays_[static_cast<std::size_t>(beam) * columns + column];
-      ray.origin = (pose * model_.beam_origin(beam)).cast<float>();
-      ray.direction = (pose.linear() * model_.direction(beam, column)).cast<float>();
-      ray.max_distance = max_distance;
+      ray->origin = (pose * model_.beam_origin(beam)).cast<float>();
+      ray->direction = (pose.linear() * model_.direction(beam, column)).cast<float>();
+      ray->max_distance = max_distance;
     }
   }
 }
@@ -54,11 +58,10 @@ void LidarSimulator::render(int frame, SimFrame& out) {
   const double period = model_.sensor().scan_period;
   const Eigen::Vector3d middle = trajectory_->sensor_pose(out.time + 0.5 * period).translation();
 
-  const auto started = std::chrono::steady_clock::now();
+  auto started = std::chrono::steady_clock::now();
   // Moving objects stand where they are at the sweep's middle for the whole sweep.
   caster_.prepare(frame, out.time + 0.5 * period, middle);
-  make_rays(out.time, out.sensor_pose);
-  caster_.cast(rays_, hits_);
+  make_column_poses(out.time, out.sensor_pose);
   ray_casting_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
@@ -69,15 +72,24 @@ void LidarSimulator::render(int frame, SimFrame& out) {
   out.normals.clear();
   Rng rng(derive_seed(seed_, kNoiseStream, static_cast<uint64_t>(frame)));
   const int beams = model_.beams(), columns = model_.columns();
-  // Column by column, the order a Velodyne reports points in. Hits are stored beam by beam: a
-  // block of columns keeps the rows it reads in cache.
+  // A block of columns at a time, so that its rays and hits stay in cache between casting and
+  // reading them. Rays and hits are stored beam by beam (neighbours in a packet share a beam);
+  // points come out column by column, the order a Velodyne reports them in.
   constexpr int kBlock = 16;
   for (int block = 0; block < columns; block += kBlock) {
-    for (int column = block; column < std::min(block + kBlock, columns); ++column) {
+    const int width = std::min(kBlock, columns - block);
+    started = std::chrono::steady_clock::now();
+    make_rays(block, width);
+    hits_.resize(rays_.size());
+    caster_.cast(rays_.data(), rays_.size(), hits_.data());
+    ray_casting_seconds_ +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    for (int c = 0; c < width; ++c) {
+      const int column = block + c;
       const Eigen::Matrix3f to_sensor = column_poses_[column].linear().transpose().cast<float>();
       const float time = static_cast<float>(model_.column_time(column));
       for (int beam = 0; beam < beams; ++beam) {
-        const std::size_t index = static_cast<std::size_t>(beam) * columns + column;
+        const std::size_t index = static_cast<std::size_t>(beam) * width + c;
         if (!add_return(hits_[index], rays_[index].direction, beam, column, rng, out)) continue;
         out.scan.points.back().time = time;
         out.normals.push_back(to_sensor * hits_[index].normal);

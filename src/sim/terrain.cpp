@@ -86,6 +86,18 @@ std::vector<CrossSectionPiece> road_cross_section(const ScenarioParams& s) {
   return section;
 }
 
+std::vector<CrossSectionPiece> side_street_cross_section(const SideStreet& street) {
+  const double w = street.half_width, top = street.curb_height, outer = street.outer();
+  std::vector<CrossSectionPiece> section{
+      {-w, 0.0, w, 0.0, SemanticClass::kRoad, 0.2f},
+      {-0.075, 0.005, 0.075, 0.005, SemanticClass::kRoad, 0.7f, 3.0, 6.0}};
+  for (double side : {-1.0, 1.0}) {
+    section.push_back({side * w, 0.0, side * w, top, SemanticClass::kSidewalk, 0.35f});
+    section.push_back({side * w, top, side * outer, top, SemanticClass::kSidewalk, 0.35f});
+  }
+  return section;
+}
+
 TerrainModel::TerrainModel(const Path& path, const ScenarioParams& s, HeightField hills,
                            HeightField relief, bool path_follows_hills, double reach)
     : path_(path),
@@ -173,18 +185,59 @@ double TerrainModel::profile(double distance) const {
   return profile_.back().second;
 }
 
+double TerrainModel::berm_height(const Path::Nearest& nearest) const {
+  double height = 0.0;
+  for (const Berm& berm : berms_) {
+    if (nearest.s < berm.s0 || nearest.s > berm.s1 || nearest.lateral * berm.side <= 0.0) continue;
+    // Full height between the ramps, a trapezoid across.
+    const double along =
+        std::min({1.0, (nearest.s - berm.s0) / berm.ramp, (berm.s1 - nearest.s) / berm.ramp});
+    const double across = std::abs(nearest.lateral) - berm.toe;
+    const double slope = 1.5 * berm.height;  // horizontal run of each side
+    double rise = 0.0;
+    if (across > 0.0 && across < slope) {
+      rise = across / slope;
+    } else if (across >= slope && across <= slope + berm.crest) {
+      rise = 1.0;
+    } else if (across > slope + berm.crest && across < 2.0 * slope + berm.crest) {
+      rise = (2.0 * slope + berm.crest - across) / slope;
+    }
+    height = std::max(height, berm.height * rise * along);
+  }
+  return height;
+}
+
 double TerrainModel::height(const Eigen::Vector2d& xy, bool* covered) const {
   Path::Nearest nearest;
+  bool is_covered = false;
+  double result;
   if (!path_.nearest(xy, blend_end_, nearest)) {
-    if (covered) *covered = false;
-    return far_height(xy);
+    result = far_height(xy);
+  } else {
+    const double distance = std::abs(nearest.lateral);
+    is_covered = distance < covered_until_;
+    const double near = nearest.height + profile(distance);
+    const double weight = smoothstep(blend_start_, blend_end_, distance);
+    result = (1.0 - weight) * near + weight * far_height(xy) + berm_height(nearest);
   }
-  const double distance = std::abs(nearest.lateral);
-  if (covered) *covered = distance < covered_until_;
-  const double near = nearest.height + profile(distance);
-  const double weight = smoothstep(blend_start_, blend_end_, distance);
-  if (weight == 0.0) return near;
-  return (1.0 - weight) * near + weight * far_height(xy);
+  // Side streets: the ground is out of sight under them and level with their sidewalks beside
+  // them, blending into the rest over a few metres.
+  constexpr double kSideBlend = 8.0;
+  for (const SideStreet& street : side_streets_) {
+    const double outer = street.outer();
+    Path::Nearest side;
+    if (!street.path->nearest(xy, outer + kSideBlend, side)) continue;
+    const bool beside = side.distance <= std::abs(side.lateral) + 1e-6;  // not past its ends
+    if (beside && side.distance < outer - 0.3) {
+      if (covered) *covered = true;
+      return side.height + kCoveredDepth;
+    }
+    const double level = side.height + street.curb_height;
+    const double weight = smoothstep(outer + 1.0, outer + kSideBlend, side.distance);
+    result = (1.0 - weight) * level + weight * result;
+  }
+  if (covered) *covered = is_covered;
+  return result;
 }
 
 bool TerrainModel::near_road(const Eigen::Vector2d& centre, double radius) const {
@@ -200,7 +253,8 @@ bool on_other_stretch(const Path& path, const Eigen::Vector2d& xy, double s, dou
   return gap > 2.0 * half_width + 5.0;
 }
 
-void build_road(World& world, const Path& path, const std::vector<CrossSectionPiece>& section) {
+void build_road(World& world, const Path& path, const std::vector<CrossSectionPiece>& section,
+                const std::vector<SideStreet>& side_streets, double skip_start_off_carriageway) {
   std::vector<uint32_t> surfaces;
   for (const CrossSectionPiece& piece : section)
     surfaces.push_back(world.add_surface(piece.semantic, 0, piece.reflectivity));
@@ -226,9 +280,17 @@ void build_road(World& world, const Path& path, const std::vector<CrossSectionPi
                             q1 = corner(b, piece.d1, piece.z1), q0 = corner(b, piece.d0, piece.z0);
       const Eigen::Vector3f centre = 0.25f * (p0 + p1 + q0 + q1);
       const bool off_carriageway = piece.semantic != SemanticClass::kRoad;
-      if (off_carriageway && on_other_stretch(path, centre.head<2>().cast<double>(),
-                                              s0 + 0.5 * path.spacing(), carriageway)) {
-        continue;
+      if (off_carriageway) {
+        const Eigen::Vector2d xy = centre.head<2>().cast<double>();
+        if (s0 < skip_start_off_carriageway ||
+            on_other_stretch(path, xy, s0 + 0.5 * path.spacing(), carriageway))
+          continue;
+        bool across_side_street = false;
+        for (const SideStreet& street : side_streets) {
+          Path::Nearest unused;
+          across_side_street |= street.path->nearest(xy, street.half_width + 0.2, unused);
+        }
+        if (across_side_street) continue;
       }
       world.tile_at(centre).add_quad(p0, p1, q1, q0, surfaces[k]);
     }

@@ -37,13 +37,18 @@ Eigen::Isometry3d path_motion_pose(const Path& path, const PathMotion& motion, d
   return pose;
 }
 
-GeometrySet walker_geometry(const Walker& walker, double time) {
+int walker_pose(const Walker& walker, double time) {
   // About one stride per second at walking speed.
   const double stride_hz = 0.6 * std::abs(walker.motion.speed);
-  const float swing =
-      static_cast<float>(std::sin(2.0 * M_PI * stride_hz * time + walker.gait_phase));
+  const double cycles = (2.0 * M_PI * stride_hz * time + walker.gait_phase) / (2.0 * M_PI);
+  const int pose = static_cast<int>(std::lround((cycles - std::floor(cycles)) * kWalkerPoses));
+  return pose % kWalkerPoses;
+}
+
+GeometrySet walker_pose_geometry(int pose, uint32_t surface) {
+  const float swing = static_cast<float>(std::sin(2.0 * M_PI * pose / kWalkerPoses));
   GeometrySet set;
-  add_person(set, Eigen::Isometry3f::Identity(), walker.height, swing, walker.surface);
+  add_person(set, Eigen::Isometry3f::Identity(), kWalkerHeight, swing, surface);
   return set;
 }
 

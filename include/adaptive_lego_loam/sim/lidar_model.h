@@ -3,6 +3,7 @@
 // (firings per turn), range noise, dropouts at grazing incidence, intensity.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <vector>
 
 #include "adaptive_lego_loam/core/params.h"
@@ -35,7 +36,10 @@ class LidarModel {
   // Beam `beam` (0 = lowest) leaves from here, in the sensor frame.
   const Eigen::Vector3d& beam_origin(int beam) const { return beam_origins_[beam]; }
   // Unit direction of beam `beam` at column `column`, sensor frame.
-  Eigen::Vector3d direction(int beam, int column) const;
+  Eigen::Vector3d direction(int beam, int column) const {
+    return {cos_elevation_[beam] * cos_azimuth_[column],
+            cos_elevation_[beam] * sin_azimuth_[column], sin_elevation_[beam]};
+  }
   // Column 0 looks backwards (azimuth pi) and the head turns clockwise seen from above, as a
   // Velodyne's does.
   double azimuth(int column) const;
@@ -43,7 +47,10 @@ class LidarModel {
   double column_time(int column) const;
 
   // Chance that a return at this cosine of incidence comes back.
-  double return_probability(double cos_incidence) const;
+  double return_probability(double cos_incidence) const {
+    return std::clamp((cos_incidence - cos_no_return_) / (cos_full_return_ - cos_no_return_), 0.0,
+                      1.0);
+  }
 
  private:
   SensorParams sensor_;

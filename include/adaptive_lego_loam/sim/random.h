@@ -37,13 +37,12 @@ class Rng {
     return lo + static_cast<int>(uniform() * (static_cast<double>(hi) - lo + 1.0));
   }
   bool chance(double probability) { return uniform() < probability; }
-  double normal(double mean, double sigma);
+  double normal(double mean, double sigma) { return mean + sigma * standard_normal(); }
+  double standard_normal();
   double sign() { return chance(0.5) ? 1.0 : -1.0; }
 
  private:
   std::mt19937_64 engine_;
-  double spare_normal_ = 0.0;
-  bool has_spare_normal_ = false;
 };
 
 }  // namespace adaptive_lego_loam::sim

@@ -1,7 +1,8 @@
 #pragma once
 // Ray casting against a World with Embree 3. Static tiles are built once when the sensor first
-// comes near them; each frame only a small top-level scene of instances is rebuilt: the tiles in
-// reach, plants in their wind state of the frame, and the moving objects where they are then.
+// comes near them. A top-level scene holds an instance of each object in reach; each frame moves
+// them (plants to their wind state of the frame, moving objects to where they are then) and
+// rebuilds only that top level.
 
 #include <Eigen/Core>
 #include <memory>
@@ -38,6 +39,8 @@ class RayCaster {
   void prepare(int frame, double time, const Eigen::Vector3d& sensor_position);
   // Closest hit of each ray in the prepared scene.
   void cast(const std::vector<Ray>& rays, std::vector<Hit>& hits) const;
+  // The same for `count` rays into `hits` (room for `count`).
+  void cast(const Ray* rays, std::size_t count, Hit* hits) const;
 
  private:
   struct Impl;

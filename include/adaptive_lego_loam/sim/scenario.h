@@ -45,7 +45,9 @@ struct ScenarioParams {
   double walkers_per_100m = 3.0;
   double standing_people_per_100m = 1.0;
   double walls_per_100m = 0.0;
-  double fences_share = 0.5;  // of gaps between buildings closed by a fence
+  double fences_share = 0.5;      // of gaps between buildings closed by a fence
+  double house_share = 0.5;       // of building lots with a detached house rather than a block
+  double junctions_per_km = 0.0;  // side streets branching off (urban)
   bool guard_rails = false;
   bool tunnel = false;
   // Vegetation: facet size and the leaf jitter from scan to scan (wind).

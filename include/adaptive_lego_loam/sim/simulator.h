@@ -37,7 +37,9 @@ class LidarSimulator {
   double ray_casting_seconds() const { return ray_casting_seconds_; }
 
  private:
-  void make_rays(double sweep_start, const Eigen::Isometry3d& start_pose);
+  void make_column_poses(double sweep_start, const Eigen::Isometry3d& start_pose);
+  // Rays of columns [first_column, first_column + width), beam by beam, into rays_.
+  void make_rays(int first_column, int width);
   // Appends the point (without its time) and label of a hit that comes back; false when the
   // return is lost (out of range, grazing incidence).
   bool add_return(const Hit& hit, const Eigen::Vector3f& direction, int beam, int column, Rng& rng,
@@ -47,7 +49,7 @@ class LidarSimulator {
   std::shared_ptr<const Trajectory> trajectory_;
   RayCaster caster_;
   uint64_t seed_;
-  std::vector<Ray> rays_;  // beam-major: neighbours in a packet share a beam
+  std::vector<Ray> rays_;  // of a block of columns, beam-major: neighbours in a packet share a beam
   std::vector<Hit> hits_;
   std::vector<Eigen::Isometry3d> column_poses_;
   double ray_casting_seconds_ = 0.0;

@@ -86,7 +86,12 @@ struct World {
 // Where a path-following object is at `time`: on the road surface, x along its direction of travel.
 Eigen::Isometry3d path_motion_pose(const Path& path, const PathMotion& motion, double time);
 
-// A walking person at `time`, in its own frame (x forward, feet at z = 0): legs and arms swing.
-GeometrySet walker_geometry(const Walker& walker, double time);
+// A walking person in its own frame (x forward, feet at z = 0) is one of kWalkerPoses poses of a
+// gait cycle, in which legs and arms swing, of a person kWalkerHeight tall scaled to its height.
+constexpr int kWalkerPoses = 16;
+constexpr float kWalkerHeight = 1.75f;
+// The pose of the walker's gait at `time`, in [0, kWalkerPoses).
+int walker_pose(const Walker& walker, double time);
+GeometrySet walker_pose_geometry(int pose, uint32_t surface);
 
 }  // namespace adaptive_lego_loam::sim
