@@ -40,16 +40,32 @@ DepthClustering::DepthClustering(const RangeImageGeometry& geometry)
 
 void DepthClustering::cluster(const RangeImage& image, const std::vector<uint8_t>& excluded,
                               double beta0_deg, const ClusterSizeRule& rule, ClusterLabels& out) {
-  const double beta0 = beta0_deg * M_PI / 180.0;
   image.mark_occupied(excluded, member_);
-  find_joins(image, static_cast<float>(std::sin(beta0)), static_cast<float>(std::cos(beta0)));
+  find_joins(image, beta0_deg);
   link_joined_cells(image.rows(), image.cols());
+  label_components(image.cols(), rule, out);
+}
+
+void DepthClustering::recluster(const RangeImage& image, double beta0_deg,
+                                const ClusterSizeRule& rule, ClusterLabels& out) {
+  if (beta0_deg > beta0_deg_) {  // stricter: clusters split, start over
+    find_joins(image, beta0_deg);
+    link_joined_cells(image.rows(), image.cols());
+  } else {
+    previous_joins_.swap(joins_);
+    find_joins(image, beta0_deg);
+    link_new_joins(image.rows(), image.cols());
+  }
   label_components(image.cols(), rule, out);
 }
 
 // Branch-free, in plain loops the compiler vectorises: whether a pair joins is close to a coin
 // toss on foliage.
-void DepthClustering::find_joins(const RangeImage& image, float sin_beta0, float cos_beta0) {
+void DepthClustering::find_joins(const RangeImage& image, double beta0_deg) {
+  beta0_deg_ = beta0_deg;
+  const double beta0 = beta0_deg * M_PI / 180.0;
+  const float sin_beta0 = static_cast<float>(std::sin(beta0));
+  const float cos_beta0 = static_cast<float>(std::cos(beta0));
   const int rows = image.rows(), cols = image.cols();
   joins_.assign(image.size(), 0);
   const uint8_t* member = member_.data();
@@ -116,6 +132,24 @@ void DepthClustering::link_joined_cells(int rows, int cols) {
       if (joins[cell] & kJoinsUp) unite(cell, cell - cols);
     }
     if (joins[last] & kJoinsFirstColumn) unite(last, first);
+  }
+}
+
+// The forest of the last call stays valid: the pairs that join now and did not then only merge
+// its clusters. (Joins grow monotonically as beta0 falls, in float too: sin(beta0) falls,
+// cos(beta0) rises and both sides of the criterion are non-negative.)
+void DepthClustering::link_new_joins(int rows, int cols) {
+  const uint8_t* joins = joins_.data();
+  const uint8_t* previous = previous_joins_.data();
+  for (int row = 0; row < rows; ++row) {
+    const int first = row * cols, last = first + cols - 1;
+    for (int cell = first; cell <= last; ++cell) {
+      const uint8_t fresh = joins[cell] & ~previous[cell];
+      if (fresh == 0) continue;
+      if (fresh & kJoinsLeft) unite(cell, cell - 1);
+      if (fresh & kJoinsUp) unite(cell, cell - cols);
+      if (fresh & kJoinsFirstColumn) unite(last, first);
+    }
   }
 }
 

@@ -242,7 +242,6 @@ bool RangeProjector::collect_candidates(const Scan& scan, bool use_ring,
     // Column 0 looks along -x; columns grow counter-clockwise seen from above.
     const float position = (fast_atan2(p.y, p.x) + float(M_PI)) * cols_per_rad;
     const int col = std::min(static_cast<int>(position), cols - 1);
-    const RangeImage::Candidate candidate{index, row * cols + col, col, position - col, range};
     if (position < last_position[row] - 1.f) {
       if (position < last_position[row] - 0.5f * cols) {
         ordered &= ++wraps[row] <= 1;
@@ -251,10 +250,11 @@ bool RangeProjector::collect_candidates(const Scan& scan, bool use_ring,
       }
     }
     last_position[row] = position;
+    // Built where used: a candidate placed at once then stays in registers.
     if (!place_in_arrival_order) {
-      image.candidates_.push_back(candidate);
+      image.candidates_.push_back({index, row * cols + col, col, position - col, range});
     } else if (ordered) {
-      place(candidate, scan, image);
+      place({index, row * cols + col, col, position - col, range}, scan, image);
     } else {
       return false;  // leaves the image half done
     }

@@ -42,6 +42,11 @@ class DepthClustering {
   // that take no part, e.g. ground.
   void cluster(const RangeImage& image, const std::vector<uint8_t>& excluded, double beta0_deg,
                const ClusterSizeRule& rule, ClusterLabels& out);
+  // cluster() again on the image and excluded cells of the last call, with another beta0. When it
+  // is no stricter, every pair that joined still joins: only the pairs that newly join are
+  // linked into the last call's clusters (the ambient filter's step 9 after step 5).
+  void recluster(const RangeImage& image, double beta0_deg, const ClusterSizeRule& rule,
+                 ClusterLabels& out);
 
  private:
   RangeImageGeometry geometry_;
@@ -52,8 +57,9 @@ class DepthClustering {
   // components of the joining neighbour pairs. They are found in two row-major passes over a
   // union-find forest instead, which ids them in the same order (by their first cell) without a
   // queue. Buffers are kept to reuse their memory between scans.
-  void find_joins(const RangeImage& image, float sin_beta0, float cos_beta0);
+  void find_joins(const RangeImage& image, double beta0_deg);
   void link_joined_cells(int rows, int cols);
+  void link_new_joins(int rows, int cols);
   void label_components(int cols, const ClusterSizeRule& rule, ClusterLabels& out);
   int32_t root(int32_t cell);
   void unite(int32_t a, int32_t b);
@@ -62,6 +68,8 @@ class DepthClustering {
   static constexpr uint8_t kJoinsLeft = 1, kJoinsUp = 2, kJoinsFirstColumn = 4;
   std::vector<uint8_t> member_;  // per cell: occupied and not excluded
   std::vector<uint8_t> joins_;   // per cell
+  std::vector<uint8_t> previous_joins_;
+  double beta0_deg_ = 0.0;       // of the last call
   std::vector<int32_t> parent_;  // per member cell: a cell of its cluster no later than itself
   std::vector<int32_t> last_row_, rows_spanned_;  // per cluster
 };
