@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace adaptive_lego_loam {
 namespace {
@@ -48,6 +49,9 @@ void DepthClustering::cluster(const RangeImage& image, const std::vector<uint8_t
 
 void DepthClustering::recluster(const RangeImage& image, double beta0_deg,
                                 const ClusterSizeRule& rule, ClusterLabels& out) {
+  if (member_.size() != static_cast<std::size_t>(image.size())) {
+    throw std::logic_error("DepthClustering::recluster() needs cluster() on the image first");
+  }
   if (beta0_deg > beta0_deg_) {  // stricter: clusters split, start over
     find_joins(image, beta0_deg);
     link_joined_cells(image.rows(), image.cols());

@@ -63,7 +63,8 @@ void EuclideanClustering::cluster(const RangeImage& image, const std::vector<uin
 // neighbour's range), but a cluster is every cell reachable from the seed by joins whatever the
 // order its neighbours are tried in.
 int EuclideanClustering::grow_cluster(const RangeImage& image, int seed, int32_t id,
-                                      std::vector<int32_t>& label) {
+                                      std::vector<int32_t>& labels) {
+  int32_t* label = labels.data();
   const int rows = image.rows(), cols = image.cols(), w = params_.window;
   const int width = 2 * w + 1;
   const bool fixed = params_.fixed_threshold > 0.0;
@@ -78,13 +79,14 @@ int EuclideanClustering::grow_cluster(const RangeImage& image, int seed, int32_t
   queue[tail++] = {seed, seed / cols, seed % cols};
   while (head < tail) {
     const QueuedCell centre = queue[head++];
-    const ScanPoint& a = points[centre.cell];
+    // Copied: the byte stores below could alias the image's points for all the compiler knows.
+    const float ax = points[centre.cell].x, ay = points[centre.cell].y, az = points[centre.cell].z;
     const float* factor = &squared_factor_[centre.row * width * width];
     // Neighbour (row, col) joins when |AB|^2 < factor * |OB|^2; `k` is its window offset.
     auto try_join = [&](int row, int col, int k) {
       const int cell = row * cols + col;
       const ScanPoint& b = points[cell];
-      const float dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+      const float dx = ax - b.x, dy = ay - b.y, dz = az - b.z;
       const float range_b = ranges[cell];
       const float limit = fixed ? fixed_squared : factor[k] * range_b * range_b;
       if (dx * dx + dy * dy + dz * dz < limit) {
@@ -118,12 +120,13 @@ int EuclideanClustering::grow_cluster(const RangeImage& image, int seed, int32_t
           const uint8_t flags = pack_flags(&is_free[(group + r) * cols + first_col + chunk]);
           free_cells |= static_cast<uint64_t>(flags & chunk_columns) << (8 * r);
         }
+        // Bit 8 r + c is (group + r, first_col + chunk + c), window offset k0 + r width + c.
+        const int k0 = (group - centre.row + w) * width + chunk;
         while (free_cells != 0) {
           const int bit = __builtin_ctzll(free_cells);
           free_cells &= free_cells - 1;
-          const int row = group + bit / 8, column_in_window = chunk + bit % 8;
-          try_join(row, first_col + column_in_window,
-                   (row - centre.row + w) * width + column_in_window);
+          const int r = bit >> 3, c = bit & 7;
+          try_join(group + r, first_col + chunk + c, k0 + r * width + c);
         }
       }
     }

@@ -40,7 +40,7 @@ class EuclideanClustering {
     int32_t cell, row, col;
   };
   // Labels the cluster of `seed` as `id`; returns its size.
-  int grow_cluster(const RangeImage& image, int seed, int32_t id, std::vector<int32_t>& label);
+  int grow_cluster(const RangeImage& image, int seed, int32_t id, std::vector<int32_t>& labels);
   std::vector<QueuedCell> queue_;  // reused between scans
   std::vector<uint8_t> free_;      // per cell: occupied, not excluded, not labelled yet
 };
