@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 namespace adaptive_lego_loam {
@@ -114,50 +115,26 @@ bool RangeProjector::uses_ring(const Scan& scan) const {
 }
 
 int RangeProjector::row_from_elevation(float x, float y, float z) const {
-  return row_from_elevation(x * x + y * y, z);
-}
-
-// mismatch(row) = (z - h_row) / horizontal - tan(elevation_row) falls as the row rises when the
-// beam offsets h do not fall faster than the beams rise (true of every sensor we know at its
-// minimum range). A table on the slope seen from the mean beam origin gives a first row; a short
-// walk finds the sign change and the nearer side of it wins.
-inline int RangeProjector::row_from_elevation(float horizontal_sq, float z) const {
+  const float horizontal_sq = x * x + y * y;
   if (horizontal_sq <= 0.f) return -1;
   const float inverse_horizontal = 1.f / std::sqrt(horizontal_sq);
+  // mismatch(row) = (z - h_row) / horizontal - tan(elevation_row) falls as the row rises when
+  // the beam offsets h do not fall faster than the beams rise (true of every sensor we know at
+  // its minimum range). A table on the slope seen from the mean beam origin gives a first row;
+  // a short walk finds the sign change and the nearer side of it wins.
+  auto mismatch = [&](int row) {
+    return (z - offset_m_[row]) * inverse_horizontal - tan_elevation_[row];
+  };
   const float slope = (z - mean_offset_m_) * inverse_horizontal;
   const int bin = std::clamp(static_cast<int>((slope - lookup_min_slope_) * lookup_bins_per_slope_),
                              0, static_cast<int>(row_lookup_.size()) - 1);
-  const int row = row_lookup_[bin];
-  const float at_row = elevation_mismatch(row, z, inverse_horizontal);
-  // The walk's direction rarely changes from one point to the next, but whether it takes one
-  // step or two is a coin toss: the first two steps are taken without branching on that. Ties go
-  // to the lower row, as in the walk.
-  if (at_row > 0.f && row + 2 < geometry_.rows) {
-    // at[i]: mismatch of row + i; the last beam below the point is row or row + 1.
-    const float at[3] = {at_row, elevation_mismatch(row + 1, z, inverse_horizontal),
-                         elevation_mismatch(row + 2, z, inverse_horizontal)};
-    if ((at[1] <= 0.f) | (at[2] <= 0.f)) {
-      const int below = !(at[1] <= 0.f);
-      return row + below + !(at[below] <= -at[below + 1]);
-    }
-  } else if (at_row <= 0.f && row >= 2) {
-    // at[i]: mismatch of row - 2 + i; the last beam below the point is row - 2 or row - 1.
-    const float at[3] = {elevation_mismatch(row - 2, z, inverse_horizontal),
-                         elevation_mismatch(row - 1, z, inverse_horizontal), at_row};
-    if ((at[0] > 0.f) | (at[1] > 0.f)) {
-      const int below = at[1] > 0.f;
-      return row - 2 + below + (-at[below + 1] < at[below]);
-    }
-  }
-  return walk_to_row(row, at_row, z, inverse_horizontal);
-}
-
-int RangeProjector::walk_to_row(int row, float at_row, float z, float inverse_horizontal) const {
+  int row = row_lookup_[bin];
   const int top = geometry_.rows - 1;
+  float at_row = mismatch(row);
   if (at_row > 0.f) {
     // Walk up to the last row still below the point.
     while (row < top) {
-      const float above = elevation_mismatch(row + 1, z, inverse_horizontal);
+      const float above = mismatch(row + 1);
       if (above <= 0.f) return at_row <= -above ? row : row + 1;
       ++row;
       at_row = above;
@@ -166,7 +143,7 @@ int RangeProjector::walk_to_row(int row, float at_row, float z, float inverse_ho
   }
   // Walk down to the last row still above the point.
   while (row > 0) {
-    const float below = elevation_mismatch(row - 1, z, inverse_horizontal);
+    const float below = mismatch(row - 1);
     if (below > 0.f) return -at_row < below ? row : row - 1;
     --row;
     at_row = below;
@@ -174,8 +151,8 @@ int RangeProjector::walk_to_row(int row, float at_row, float z, float inverse_ho
   return -at_row <= row_tolerance_tan_low_ ? 0 : -1;
 }
 
-int RangeProjector::row_of(const ScanPoint& p, float horizontal_sq, bool use_ring) const {
-  if (!use_ring) return row_from_elevation(horizontal_sq, p.z);
+int RangeProjector::row_of(const ScanPoint& p, bool use_ring) const {
+  if (!use_ring) return row_from_elevation(p.x, p.y, p.z);
   if (p.ring < 0) return -1;
   if (!sensor_.ring_to_row.empty()) {
     return p.ring < static_cast<int>(sensor_.ring_to_row.size()) ? sensor_.ring_to_row[p.ring] : -1;
@@ -184,20 +161,6 @@ int RangeProjector::row_of(const ScanPoint& p, float horizontal_sq, bool use_rin
 }
 
 void RangeProjector::project(const Scan& scan, RangeImage& image) const {
-  const bool use_ring = uses_ring(scan);
-  // Drivers deliver each row in azimuth order, and then placing the points as they come equals
-  // placing them sorted.
-  start_projection(scan, image);
-  if (collect_candidates(scan, use_ring, /*place_in_arrival_order=*/true, image)) return;
-  // Some row came out of azimuth order: place the points sorted by cell instead.
-  start_projection(scan, image);
-  collect_candidates(scan, use_ring, /*place_in_arrival_order=*/false, image);
-  sort_candidates_by_cell(image);
-  for (const int32_t i : image.by_cell_)
-    place(image.candidates_[i], scan, image);
-}
-
-void RangeProjector::start_projection(const Scan& scan, RangeImage& image) const {
   image.geometry_ = geometry_;
   const int cells = geometry_.rows * geometry_.cols;
   image.range_.assign(cells, 0.f);
@@ -205,22 +168,33 @@ void RangeProjector::start_projection(const Scan& scan, RangeImage& image) const
   image.source_.assign(cells, RangeImage::kNoPoint);
   image.stats_ = ProjectionStats();
   image.stats_.input_points = static_cast<int>(scan.points.size());
-  image.candidates_.clear();
-  image.row_last_position_.assign(geometry_.rows, -1.f);
-  image.row_wraps_.assign(geometry_.rows, 0);
+  const bool azimuth_ordered = collect_candidates(scan, image);
+  if (azimuth_ordered) {
+    image.by_cell_.resize(image.candidates_.size());
+    std::iota(image.by_cell_.begin(), image.by_cell_.end(), 0);
+  } else {
+    sort_candidates_by_cell(image);
+  }
+  place_candidates(scan, image);
 }
 
-bool RangeProjector::collect_candidates(const Scan& scan, bool use_ring,
-                                        bool place_in_arrival_order, RangeImage& image) const {
+bool RangeProjector::collect_candidates(const Scan& scan, RangeImage& image) const {
   ProjectionStats& stats = image.stats_;
+  const bool use_ring = uses_ring(scan);
   const float min_range = static_cast<float>(sensor_.min_range);
   const float max_range = static_cast<float>(sensor_.max_range);
   const float cols_per_rad = static_cast<float>(geometry_.cols / (2.0 * M_PI));
   const int cols = geometry_.cols;
+  image.candidates_.resize(scan.points.size());
+  RangeImage::Candidate* candidate = image.candidates_.data();
+  float* last_position = nullptr;
   // Whether each row arrives in azimuth order (one wrap allowed, and steps back of under a
-  // column, which rows from elevation produce where beams overlap).
-  float* last_position = image.row_last_position_.data();
-  int32_t* wraps = image.row_wraps_.data();
+  // column, which rows from elevation produce where beams overlap): drivers deliver points in
+  // firing order, and then placing them as they come equals placing them sorted.
+  image.row_last_position_.assign(geometry_.rows, -1.f);
+  last_position = image.row_last_position_.data();
+  auto& wraps = image.row_wraps_;
+  wraps.assign(geometry_.rows, 0);
   bool ordered = true;
   for (int index = 0; index < stats.input_points; ++index) {
     const ScanPoint& p = scan.points[index];
@@ -228,13 +202,12 @@ bool RangeProjector::collect_candidates(const Scan& scan, bool use_ring,
       ++stats.non_finite;
       continue;
     }
-    const float horizontal_sq = p.x * p.x + p.y * p.y;
-    const float range = std::sqrt(horizontal_sq + p.z * p.z);
+    const float range = std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
     if (range < min_range || range > max_range) {
       ++stats.out_of_range;
       continue;
     }
-    const int row = row_of(p, horizontal_sq, use_ring);
+    const int row = row_of(p, use_ring);
     if (row < 0) {
       ++stats.outside_rows;
       continue;
@@ -242,6 +215,7 @@ bool RangeProjector::collect_candidates(const Scan& scan, bool use_ring,
     // Column 0 looks along -x; columns grow counter-clockwise seen from above.
     const float position = (fast_atan2(p.y, p.x) + float(M_PI)) * cols_per_rad;
     const int col = std::min(static_cast<int>(position), cols - 1);
+    *candidate++ = {index, row * cols + col, position - col, range};
     if (position < last_position[row] - 1.f) {
       if (position < last_position[row] - 0.5f * cols) {
         ordered &= ++wraps[row] <= 1;
@@ -250,15 +224,8 @@ bool RangeProjector::collect_candidates(const Scan& scan, bool use_ring,
       }
     }
     last_position[row] = position;
-    // Built where used: a candidate placed at once then stays in registers.
-    if (!place_in_arrival_order) {
-      image.candidates_.push_back({index, row * cols + col, col, position - col, range});
-    } else if (ordered) {
-      place({index, row * cols + col, col, position - col, range}, scan, image);
-    } else {
-      return false;  // leaves the image half done
-    }
   }
+  image.candidates_.resize(candidate - image.candidates_.data());
   return ordered;
 }
 
@@ -294,34 +261,37 @@ void RangeProjector::sort_candidates_by_cell(RangeImage& image) const {
   }
 }
 
-inline void RangeProjector::place(const RangeImage::Candidate& candidate, const Scan& scan,
-                                  RangeImage& image) const {
+void RangeProjector::place_candidates(const Scan& scan, RangeImage& image) const {
   ProjectionStats& stats = image.stats_;
-  int cell = candidate.cell;
-  if (image.source_[cell] != RangeImage::kNoPoint) {
-    // The cell is taken (KITTI's scans and dual-return drivers put some points closer than one
-    // column apart): use the free neighbour on the side the point leans to, else the other.
-    const int cols = geometry_.cols;
-    const int row_start = cell - candidate.col;
-    const int right = candidate.col + 1 < cols ? cell + 1 : row_start;
-    const int left = candidate.col > 0 ? cell - 1 : row_start + cols - 1;
-    const bool leans_right = candidate.fraction >= 0.5f;
-    const int first = leans_right ? right : left;
-    const int second = leans_right ? left : right;
-    if (image.source_[first] == RangeImage::kNoPoint) {
-      cell = first;
-    } else if (image.source_[second] == RangeImage::kNoPoint) {
-      cell = second;
-    } else {
-      ++stats.collisions;
-      return;
+  const int cols = geometry_.cols;
+  for (const int32_t i : image.by_cell_) {
+    const RangeImage::Candidate& candidate = image.candidates_[i];
+    int cell = candidate.cell;
+    if (image.source_[cell] != RangeImage::kNoPoint) {
+      // The cell is taken (KITTI's scans and dual-return drivers put some points closer than one
+      // column apart): use the free neighbour on the side the point leans to, else the other.
+      const int row_start = cell - cell % cols;
+      const int col = cell - row_start;
+      const int right = row_start + (col + 1) % cols;
+      const int left = row_start + (col + cols - 1) % cols;
+      const bool leans_right = candidate.fraction >= 0.5f;
+      const int first = leans_right ? right : left;
+      const int second = leans_right ? left : right;
+      if (image.source_[first] == RangeImage::kNoPoint) {
+        cell = first;
+      } else if (image.source_[second] == RangeImage::kNoPoint) {
+        cell = second;
+      } else {
+        ++stats.collisions;
+        continue;
+      }
+      ++stats.displaced;
     }
-    ++stats.displaced;
+    image.range_[cell] = candidate.range;
+    image.points_[cell] = scan.points[candidate.source];
+    image.source_[cell] = candidate.source;
+    ++stats.projected;
   }
-  image.range_[cell] = candidate.range;
-  image.points_[cell] = scan.points[candidate.source];
-  image.source_[cell] = candidate.source;
-  ++stats.projected;
 }
 
 }  // namespace adaptive_lego_loam

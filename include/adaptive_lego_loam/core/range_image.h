@@ -71,7 +71,6 @@ class RangeImage {
   struct Candidate {
     int32_t source;
     int32_t cell;
-    int32_t col;
     float fraction;  // position inside the cell's column, in [0, 1)
     float range;
   };
@@ -95,21 +94,11 @@ class RangeProjector {
   bool uses_ring(const Scan& scan) const;
 
  private:
-  int row_of(const ScanPoint& p, float horizontal_sq, bool use_ring) const;
-  int row_from_elevation(float horizontal_sq, float z) const;
-  int walk_to_row(int row, float at_row, float z, float inverse_horizontal) const;
-  // Slope of the point seen from the row's beam origin less the row's beam slope.
-  float elevation_mismatch(int row, float z, float inverse_horizontal) const {
-    return (z - offset_m_[row]) * inverse_horizontal - tan_elevation_[row];
-  }
-  void start_projection(const Scan& scan, RangeImage& image) const;
-  // Each valid point's candidate, in input order: placed at once while every row is in azimuth
-  // order (returns false, the image half done, at the first row that is not), or kept in
-  // image.candidates_.
-  bool collect_candidates(const Scan& scan, bool use_ring, bool place_in_arrival_order,
-                          RangeImage& image) const;
+  int row_of(const ScanPoint& p, bool use_ring) const;
+  // Returns whether every row arrived in azimuth order.
+  bool collect_candidates(const Scan& scan, RangeImage& image) const;
   void sort_candidates_by_cell(RangeImage& image) const;
-  void place(const RangeImage::Candidate& candidate, const Scan& scan, RangeImage& image) const;
+  void place_candidates(const Scan& scan, RangeImage& image) const;
 
   SensorParams sensor_;
   RangeImageGeometry geometry_;
