@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <climits>
 #include <cmath>
 #include <map>
 #include <random>
@@ -173,4 +174,37 @@ TEST(DepthClustering, ExcludedCellsTakeNoPart) {
   ClusterLabels labels;
   DepthClustering(projector.geometry()).cluster(image, excluded, 60.0, {}, labels);
   EXPECT_EQ(labels.clusters(), 0);
+}
+
+TEST(DepthClustering, ReclusterMatchesClusteringAfresh) {
+  const SensorParams sensor = sensor64();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> depth(0.0, 0.5);
+  Scan scan;
+  scan.has_ring = true;
+  for (int row = 20; row < 40; ++row) {  // a bush
+    for (int col = 880; col < 940; ++col)
+      scan.points.push_back(test::cell_point(sensor, row, col, 10.0 + depth(rng)));
+  }
+  for (int row = 10; row < 50; ++row) {  // a rough wall across column 0
+    for (int col = -12; col < 12; ++col)
+      scan.points.push_back(test::cell_point(sensor, row, (col + 1800) % 1800, 15.0 + depth(rng)));
+  }
+  RangeProjector projector(sensor);
+  RangeImage image;
+  projector.project(scan, image);
+  std::vector<uint8_t> excluded(image.size(), 0);
+  for (int cell = 0; cell < image.cell(25, 0); ++cell)
+    excluded[cell] = 1;
+
+  DepthClustering reused(projector.geometry()), fresh(projector.geometry());
+  ClusterLabels again, expected;
+  reused.cluster(image, excluded, 60.0, {30, INT_MAX, INT_MAX}, again);
+  for (const double beta0 : {45.0, 10.0, 10.0, 80.0, 20.0}) {
+    reused.recluster(image, beta0, {}, again);
+    fresh.cluster(image, excluded, beta0, {}, expected);
+    EXPECT_EQ(again.label, expected.label) << "beta0 " << beta0;
+    EXPECT_EQ(again.size, expected.size) << "beta0 " << beta0;
+    EXPECT_EQ(again.kept, expected.kept) << "beta0 " << beta0;
+  }
 }

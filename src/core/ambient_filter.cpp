@@ -53,16 +53,25 @@ void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
   const AmbientFilterParams& ambient = config_.ambient;
   segmenter_.project_and_mark_ground(scan, result.segmentation);
   result.adaptive = ambient.mode == Beta0Mode::kAdaptive;
-  if (result.adaptive) {
-    estimate_degeneration(result);
-  } else {
+  if (!result.adaptive) {
     result.degeneration = Degeneration();
     result.skeleton_points = 0;
     result.normals.clear();
     result.mu = 0.0;
     result.beta0_deg = ambient.fixed_beta0_deg;
+    segmenter_.cluster_and_build(scan, result.beta0_deg, result.segmentation);
+    return;
   }
-  segmenter_.cluster_and_build(scan, result.beta0_deg, result.segmentation);
+  estimate_degeneration(result);
+  // Step 9 from step 5's strict clusters: beta0 lies between beta0_min and beta0_max, so with
+  // the usual beta0_min < beta0_max the clusters only merge (recluster() handles either way).
+  SegmentationResult& segmentation = result.segmentation;
+  Stopwatch watch;
+  strict_depth_.recluster(segmentation.image, result.beta0_deg, segmenter_.params().size_rule,
+                          segmentation.clusters);
+  segmentation.beta0_deg = result.beta0_deg;
+  segmentation.times.add("depth_clustering", watch.lap_ms());
+  segmenter_.build_cloud(scan, segmentation);
 }
 
 void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {

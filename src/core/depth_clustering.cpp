@@ -2,8 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace adaptive_lego_loam {
+namespace {
+
+bool passes(const ClusterSizeRule& rule, int size, int rows_spanned) {
+  return size >= rule.min_points ||
+         (size >= rule.min_points_multi_row && rows_spanned >= rule.min_rows);
+}
+
+}  // namespace
 
 int ClusterLabels::kept_clusters() const {
   int count = 0;
@@ -32,76 +41,159 @@ DepthClustering::DepthClustering(const RangeImageGeometry& geometry)
 
 void DepthClustering::cluster(const RangeImage& image, const std::vector<uint8_t>& excluded,
                               double beta0_deg, const ClusterSizeRule& rule, ClusterLabels& out) {
-  const int rows = image.rows(), cols = image.cols();
+  image.mark_occupied(excluded, member_);
+  find_joins(image, beta0_deg);
+  link_joined_cells(image.rows(), image.cols());
+  label_components(image.cols(), rule, out);
+}
+
+void DepthClustering::recluster(const RangeImage& image, double beta0_deg,
+                                const ClusterSizeRule& rule, ClusterLabels& out) {
+  if (member_.size() != static_cast<std::size_t>(image.size())) {
+    throw std::logic_error("DepthClustering::recluster() needs cluster() on the image first");
+  }
+  if (beta0_deg > beta0_deg_) {  // stricter: clusters split, start over
+    find_joins(image, beta0_deg);
+    link_joined_cells(image.rows(), image.cols());
+  } else {
+    previous_joins_.swap(joins_);
+    find_joins(image, beta0_deg);
+    link_new_joins(image.rows(), image.cols());
+  }
+  label_components(image.cols(), rule, out);
+}
+
+// Branch-free, in plain loops the compiler vectorises: whether a pair joins is close to a coin
+// toss on foliage.
+void DepthClustering::find_joins(const RangeImage& image, double beta0_deg) {
+  beta0_deg_ = beta0_deg;
   const double beta0 = beta0_deg * M_PI / 180.0;
   const float sin_beta0 = static_cast<float>(std::sin(beta0));
   const float cos_beta0 = static_cast<float>(std::cos(beta0));
-  out.label.assign(image.size(), ClusterLabels::kNone);
-  out.size.assign(1, 0);
-  out.kept.assign(1, 0);
-  queue_.resize(image.size());
-  // One byte per cell: still free to join a cluster (occupied, not excluded, not yet labelled).
-  free_.resize(image.size());
-  for (int cell = 0; cell < image.size(); ++cell) {
-    free_[cell] = image.occupied(cell) && (excluded.empty() || !excluded[cell]);
-  }
-  row_seen_.assign(rows, 0);
-  int32_t* label = out.label.data();
-  uint8_t* is_free = free_.data();
-
-  for (int seed = 0; seed < image.size(); ++seed) {
-    if (!is_free[seed]) continue;
-    const int32_t id = static_cast<int32_t>(out.size.size());
-    label[seed] = id;
-    is_free[seed] = 0;
-    int head = 0, tail = 0;
-    queue_[tail++] = {seed, seed / cols, seed % cols};
-    while (head < tail) {
-      const QueuedCell current = queue_[head++];
-      const int cell = current.cell, row = current.row, col = current.col;
-      const float range = image.range(cell);
-      // Branch-free: whether a neighbour joins is close to a coin toss on foliage.
-      auto visit = [&](int neighbour, int neighbour_row, int neighbour_col, float sin_alpha,
-                       float cos_alpha) {
-        const bool joins =
-            is_free[neighbour] && depth_points_join(range, image.range(neighbour), sin_alpha,
-                                                    cos_alpha, sin_beta0, cos_beta0);
-        label[neighbour] = joins ? id : label[neighbour];
-        is_free[neighbour] &= !joins;
-        queue_[tail] = {neighbour, neighbour_row, neighbour_col};
-        tail += joins;
-      };
-      if (row > 0) visit(cell - cols, row - 1, col, sin_row_gap_[row - 1], cos_row_gap_[row - 1]);
-      if (row + 1 < rows) visit(cell + cols, row + 1, col, sin_row_gap_[row], cos_row_gap_[row]);
-      if (col > 0) {
-        visit(cell - 1, row, col - 1, sin_col_step_, cos_col_step_);
-      } else {
-        visit(cell + cols - 1, row, cols - 1, sin_col_step_, cos_col_step_);
-      }
-      if (col + 1 < cols) {
-        visit(cell + 1, row, col + 1, sin_col_step_, cos_col_step_);
-      } else {
-        visit(cell - cols + 1, row, 0, sin_col_step_, cos_col_step_);
-      }
+  const int rows = image.rows(), cols = image.cols();
+  joins_.assign(image.size(), 0);
+  const uint8_t* member = member_.data();
+  const float* range = image.ranges().data();
+  uint8_t* joins = joins_.data();
+  const float sin_col_step = sin_col_step_, cos_col_step = cos_col_step_;
+  for (int row = 0; row < rows; ++row) {
+    const int first = row * cols;
+    for (int cell = first + 1; cell < first + cols; ++cell) {
+      joins[cell] = member[cell] & member[cell - 1] &
+                    depth_points_join(range[cell], range[cell - 1], sin_col_step, cos_col_step,
+                                      sin_beta0, cos_beta0);
     }
-    out.size.push_back(tail);
-    out.kept.push_back(passes(rule, tail));
+    if (row == 0) continue;
+    const float sin_gap = sin_row_gap_[row - 1], cos_gap = cos_row_gap_[row - 1];
+    for (int cell = first; cell < first + cols; ++cell) {
+      joins[cell] |= (member[cell] & member[cell - cols] &
+                      depth_points_join(range[cell], range[cell - cols], sin_gap, cos_gap,
+                                        sin_beta0, cos_beta0))
+                     << 1;
+    }
+  }
+  // The columns wrap: the last cell of a row meets the first.
+  for (int row = 0; row < rows && cols > 1; ++row) {
+    const int first = row * cols, last = first + cols - 1;
+    joins[last] |= (member[last] & member[first] &
+                    depth_points_join(range[last], range[first], sin_col_step, cos_col_step,
+                                      sin_beta0, cos_beta0))
+                   << 2;
   }
 }
 
-// Counts rows only for clusters too small to pass on size alone.
-bool DepthClustering::passes(const ClusterSizeRule& rule, int size) {
-  if (size >= rule.min_points) return true;
-  if (size < rule.min_points_multi_row) return false;
-  int rows_spanned = 0;
-  for (int i = 0; i < size; ++i) {
-    uint8_t& seen = row_seen_[queue_[i].row];
-    rows_spanned += !seen;
-    seen = 1;
+int32_t DepthClustering::root(int32_t cell) {
+  int32_t* parent = parent_.data();
+  while (parent[cell] != cell) {
+    parent[cell] = parent[parent[cell]];  // path halving
+    cell = parent[cell];
   }
-  for (int i = 0; i < size; ++i)
-    row_seen_[queue_[i].row] = 0;
-  return rows_spanned >= rule.min_rows;
+  return cell;
+}
+
+// The later root goes under the earlier one, so a cluster's root is always its first cell.
+void DepthClustering::unite(int32_t a, int32_t b) {
+  a = root(a);
+  b = root(b);
+  if (a < b) {
+    parent_[b] = a;
+  } else {
+    parent_[a] = b;
+  }
+}
+
+void DepthClustering::link_joined_cells(int rows, int cols) {
+  parent_.resize(member_.size());
+  const uint8_t* member = member_.data();
+  const uint8_t* joins = joins_.data();
+  int32_t* parent = parent_.data();
+  for (int row = 0; row < rows; ++row) {
+    const int first = row * cols, last = first + cols - 1;
+    for (int cell = first; cell <= last; ++cell) {
+      if (!member[cell]) continue;
+      // Not linked yet, the cell is its own root: joining its left neighbour hangs it under that.
+      parent[cell] = joins[cell] & kJoinsLeft ? parent[cell - 1] : cell;
+      if (joins[cell] & kJoinsUp) unite(cell, cell - cols);
+    }
+    if (joins[last] & kJoinsFirstColumn) unite(last, first);
+  }
+}
+
+// The forest of the last call stays valid: the pairs that join now and did not then only merge
+// its clusters. (Joins grow monotonically as beta0 falls, in float too: sin(beta0) falls,
+// cos(beta0) rises and both sides of the criterion are non-negative.)
+void DepthClustering::link_new_joins(int rows, int cols) {
+  const uint8_t* joins = joins_.data();
+  const uint8_t* previous = previous_joins_.data();
+  for (int row = 0; row < rows; ++row) {
+    const int first = row * cols, last = first + cols - 1;
+    for (int cell = first; cell <= last; ++cell) {
+      const uint8_t fresh = joins[cell] & ~previous[cell];
+      if (fresh == 0) continue;
+      if (fresh & kJoinsLeft) unite(cell, cell - 1);
+      if (fresh & kJoinsUp) unite(cell, cell - cols);
+      if (fresh & kJoinsFirstColumn) unite(last, first);
+    }
+  }
+}
+
+// Row-major, a cluster's first cell is its root and comes before its other cells, whose parents
+// come before them too: one pass gives every cell its cluster's id and counts its rows.
+void DepthClustering::label_components(int cols, const ClusterSizeRule& rule, ClusterLabels& out) {
+  const int cells = static_cast<int>(member_.size());
+  out.label.resize(cells);
+  out.size.assign(1, 0);
+  last_row_.assign(1, -1);
+  rows_spanned_.assign(1, 0);
+  const uint8_t* member = member_.data();
+  const int32_t* parents = parent_.data();
+  int32_t* label = out.label.data();
+  for (int row = 0, cell = 0; cell < cells; ++row) {
+    for (const int end = cell + cols; cell < end; ++cell) {
+      if (!member[cell]) {
+        label[cell] = ClusterLabels::kNone;
+        continue;
+      }
+      const int32_t parent = parents[cell];
+      if (parent == cell) {
+        label[cell] = static_cast<int32_t>(out.size.size());
+        out.size.push_back(0);
+        last_row_.push_back(-1);
+        rows_spanned_.push_back(0);
+      } else {
+        label[cell] = label[parent];
+      }
+      const int32_t id = label[cell];
+      ++out.size[id];
+      rows_spanned_[id] += last_row_[id] != row;
+      last_row_[id] = row;
+    }
+  }
+  out.kept.resize(out.size.size());
+  out.kept[0] = 0;
+  for (std::size_t id = 1; id < out.size.size(); ++id) {
+    out.kept[id] = passes(rule, out.size[id], rows_spanned_[id]);
+  }
 }
 
 void apply_size_rule(const RangeImage& image, const ClusterSizeRule& rule, ClusterLabels& labels) {
@@ -120,9 +212,7 @@ void apply_size_rule(const RangeImage& image, const ClusterSizeRule& rule, Clust
   }
   labels.kept.assign(clusters + 1, 0);
   for (int id = 1; id <= clusters; ++id) {
-    const int size = labels.size[id];
-    labels.kept[id] = size >= rule.min_points ||
-                      (size >= rule.min_points_multi_row && rows_spanned[id] >= rule.min_rows);
+    labels.kept[id] = passes(rule, labels.size[id], rows_spanned[id]);
   }
 }
 

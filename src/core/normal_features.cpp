@@ -41,16 +41,19 @@ void compute_normals(const RangeImage& image, const std::vector<uint8_t>& sample
   const float depth_threshold = static_cast<float>(params.depth_threshold);
   std::vector<Eigen::Vector3f> neighbourhood;
   neighbourhood.reserve((2 * w + 1) * (2 * w + 1));
+  std::vector<int> window_cols(2 * w + 1);  // wrapped once per sample, not once per cell
 
   for (int cell = 0; cell < image.size(); ++cell) {
     if (!sample_from[cell]) continue;
     if (generator() >= accept_below) continue;
     const int row = image.row_of(cell), col = image.col_of(cell);
     const float centre_range = image.range(cell);
+    for (int dc = -w; dc <= w; ++dc)
+      window_cols[dc + w] = image.wrap_col(col + dc);
     neighbourhood.clear();
     for (int r = std::max(0, row - w); r <= std::min(rows - 1, row + w); ++r) {
-      for (int dc = -w; dc <= w; ++dc) {
-        const int other = image.cell(r, image.wrap_col(col + dc));
+      for (const int window_col : window_cols) {
+        const int other = image.cell(r, window_col);
         if (!image.occupied(other) || (!excluded.empty() && excluded[other])) continue;
         if (std::fabs(image.range(other) - centre_range) >= depth_threshold) continue;
         const ScanPoint& p = image.point(other);

@@ -44,6 +44,22 @@ double RangeImageGeometry::row_gap_rad(int row_a, int row_b) const {
   return std::fabs(row_elevation_rad[row_a] - row_elevation_rad[row_b]);
 }
 
+void RangeImage::mark_occupied(const std::vector<uint8_t>& excluded,
+                               std::vector<uint8_t>& flags) const {
+  // Raw pointers: the compiler vectorises the loops only when the byte stores cannot alias the
+  // vectors' own pointers.
+  const int cells = size();
+  flags.resize(cells);
+  uint8_t* flag = flags.data();
+  const int32_t* source = source_.data();
+  for (int cell = 0; cell < cells; ++cell)
+    flag[cell] = source[cell] != kNoPoint;
+  if (excluded.empty()) return;
+  const uint8_t* excluded_cell = excluded.data();
+  for (int cell = 0; cell < cells; ++cell)
+    flag[cell] &= !excluded_cell[cell];
+}
+
 RangeProjector::RangeProjector(const SensorParams& sensor) : sensor_(sensor), geometry_(sensor) {
   validate(sensor_, "sensor params");
   for (int row = 0; row < geometry_.rows; ++row) {

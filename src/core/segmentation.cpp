@@ -1,5 +1,6 @@
 #include "adaptive_lego_loam/core/segmentation.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "adaptive_lego_loam/core/ground.h"
@@ -49,18 +50,14 @@ void build_segmented_cloud(const RangeImage& image, const std::vector<uint8_t>& 
 }
 
 void sweep_orientation(const Scan& scan, CloudInfo& info) {
-  const ScanPoint* first = nullptr;
-  const ScanPoint* last = nullptr;
-  for (const ScanPoint& p : scan.points) {
-    if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
-    if (!first) first = &p;
-    last = &p;
-  }
-  if (!first) {
+  auto valid = [](const ScanPoint& p) { return std::isfinite(p.x) && std::isfinite(p.y); };
+  const auto first = std::find_if(scan.points.begin(), scan.points.end(), valid);
+  if (first == scan.points.end()) {
     info.start_orientation = info.end_orientation = 0.f;
     info.orientation_diff = 2.f * float(M_PI);
     return;
   }
+  const auto last = std::find_if(scan.points.rbegin(), scan.points.rend(), valid);
   float start = -std::atan2(first->y, first->x);
   float end = -std::atan2(last->y, last->x) + 2.f * float(M_PI);
   if (end - start > 3.f * float(M_PI)) {
@@ -91,6 +88,11 @@ void Segmenter::cluster_and_build(const Scan& scan, double beta0_deg, Segmentati
   depth_.cluster(result.image, result.ground, beta0_deg, params_.size_rule, result.clusters);
   result.beta0_deg = beta0_deg;
   result.times.add("depth_clustering", watch.lap_ms());
+  build_cloud(scan, result);
+}
+
+void Segmenter::build_cloud(const Scan& scan, SegmentationResult& result) const {
+  Stopwatch watch;
   build_segmented_cloud(result.image, result.ground, result.clusters, params_, sensor_.ground_rows,
                         result.cloud);
   sweep_orientation(scan, result.cloud.info);

@@ -53,7 +53,7 @@ class AmbientFilter {
   Config config_;
   Segmenter segmenter_;
   EuclideanClustering euclidean_;
-  DepthClustering strict_depth_;
+  DepthClustering strict_depth_;  // step 5 at beta0_max, then step 9 merging its clusters
   bool has_previous_ = false;
   double previous_mu_ = 0.0;
   double previous_beta0_deg_ = 0.0;

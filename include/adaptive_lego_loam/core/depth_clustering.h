@@ -1,6 +1,6 @@
 #pragma once
-// Step 3 of METHOD.md: depth clustering (Bogoslavskyi & Stachniss), as LeGO-LOAM's
-// labelComponents: breadth-first search over the 4 direct neighbours, columns wrapping.
+// Step 3 of METHOD.md: depth clustering (Bogoslavskyi & Stachniss), the clusters of LeGO-LOAM's
+// labelComponents: cells joined over the 4 direct neighbours, columns wrapping.
 
 #include <cstdint>
 #include <vector>
@@ -42,19 +42,36 @@ class DepthClustering {
   // that take no part, e.g. ground.
   void cluster(const RangeImage& image, const std::vector<uint8_t>& excluded, double beta0_deg,
                const ClusterSizeRule& rule, ClusterLabels& out);
+  // cluster() again on the image and excluded cells of the last call, with another beta0. When it
+  // is no stricter, every pair that joined still joins: only the pairs that newly join are
+  // linked into the last call's clusters (the ambient filter's step 9 after step 5).
+  void recluster(const RangeImage& image, double beta0_deg, const ClusterSizeRule& rule,
+                 ClusterLabels& out);
 
  private:
   RangeImageGeometry geometry_;
   std::vector<float> sin_row_gap_, cos_row_gap_;  // between row r and r + 1
   float sin_col_step_ = 0.f, cos_col_step_ = 0.f;
-  bool passes(const ClusterSizeRule& rule, int size);
 
-  struct QueuedCell {
-    int32_t cell, row, col;
-  };
-  std::vector<QueuedCell> queue_;  // reused between scans; holds the last cluster's cells
-  std::vector<uint8_t> free_;
-  std::vector<uint8_t> row_seen_;
+  // The criterion is symmetric, so the breadth-first search's clusters are the connected
+  // components of the joining neighbour pairs. They are found in two row-major passes over a
+  // union-find forest instead, which ids them in the same order (by their first cell) without a
+  // queue. Buffers are kept to reuse their memory between scans.
+  void find_joins(const RangeImage& image, double beta0_deg);
+  void link_joined_cells(int rows, int cols);
+  void link_new_joins(int rows, int cols);
+  void label_components(int cols, const ClusterSizeRule& rule, ClusterLabels& out);
+  int32_t root(int32_t cell);
+  void unite(int32_t a, int32_t b);
+
+  // Flags of joins_: which neighbours a cell joins (each pair is flagged once).
+  static constexpr uint8_t kJoinsLeft = 1, kJoinsUp = 2, kJoinsFirstColumn = 4;
+  std::vector<uint8_t> member_;  // per cell: occupied and not excluded
+  std::vector<uint8_t> joins_;   // per cell
+  std::vector<uint8_t> previous_joins_;
+  double beta0_deg_ = 0.0;       // of the last call
+  std::vector<int32_t> parent_;  // per member cell: a cell of its cluster no later than itself
+  std::vector<int32_t> last_row_, rows_spanned_;  // per cluster
 };
 
 // Marks kept[] for every cluster of `labels` by `rule`, counting the rows each cluster spans.

@@ -39,8 +39,10 @@ class EuclideanClustering {
   struct QueuedCell {
     int32_t cell, row, col;
   };
-  std::vector<QueuedCell> queue_;
-  std::vector<uint8_t> free_;
+  // Labels the cluster of `seed` as `id`; returns its size.
+  int grow_cluster(const RangeImage& image, int seed, int32_t id, std::vector<int32_t>& labels);
+  std::vector<QueuedCell> queue_;  // reused between scans
+  std::vector<uint8_t> free_;      // per cell: occupied, not excluded, not labelled yet
 };
 
 }  // namespace adaptive_lego_loam

@@ -53,8 +53,11 @@ class RangeImage {
 
   bool occupied(int cell) const { return source_[cell] != kNoPoint; }
   float range(int cell) const { return range_[cell]; }
+  const std::vector<float>& ranges() const { return range_; }  // per cell, 0 when empty
   const ScanPoint& point(int cell) const { return points_[cell]; }
   int source_index(int cell) const { return source_[cell]; }  // index in the input scan
+  // flags[cell] = 1 where the cell is occupied and not flagged in `excluded` (may be empty).
+  void mark_occupied(const std::vector<uint8_t>& excluded, std::vector<uint8_t>& flags) const;
   const ProjectionStats& stats() const { return stats_; }
 
  private:

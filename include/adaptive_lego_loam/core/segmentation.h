@@ -61,6 +61,8 @@ class Segmenter {
   // The parts, for the ambient filter which picks beta0 in between.
   void project_and_mark_ground(const Scan& scan, SegmentationResult& result);
   void cluster_and_build(const Scan& scan, double beta0_deg, SegmentationResult& result);
+  // The segmented cloud from result.clusters (made with result.beta0_deg).
+  void build_cloud(const Scan& scan, SegmentationResult& result) const;
 
   const SensorParams& sensor() const { return sensor_; }
   const SegmentationParams& params() const { return params_; }
