@@ -100,8 +100,9 @@ struct PointKdTree::Index {
     return node;
   }
 
-  // nanoflann's search: `offsets` holds, per axis, the squared distance from the query to the
-  // current cell along it; their sum `cell_distance` bounds every point of the cell from below.
+  // An incremental cell distance (the idea of nanoflann's search): `offsets` holds, per axis, the
+  // squared distance from the query to the current cell along it; their sum `cell_distance`
+  // bounds every point of the cell from below.
   void search(uint32_t node_index, const float* query, float cell_distance, float* offsets,
               Candidates& found) const {
     const Node& node = nodes[node_index];
