@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "adaptive_lego_loam/core/union_find.h"
+
 namespace adaptive_lego_loam {
 namespace {
 
@@ -102,26 +104,6 @@ void DepthClustering::find_joins(const RangeImage& image, double beta0_deg) {
   }
 }
 
-int32_t DepthClustering::root(int32_t cell) {
-  int32_t* parent = parent_.data();
-  while (parent[cell] != cell) {
-    parent[cell] = parent[parent[cell]];  // path halving
-    cell = parent[cell];
-  }
-  return cell;
-}
-
-// The later root goes under the earlier one, so a cluster's root is always its first cell.
-void DepthClustering::unite(int32_t a, int32_t b) {
-  a = root(a);
-  b = root(b);
-  if (a < b) {
-    parent_[b] = a;
-  } else {
-    parent_[a] = b;
-  }
-}
-
 void DepthClustering::link_joined_cells(int rows, int cols) {
   parent_.resize(member_.size());
   const uint8_t* member = member_.data();
@@ -133,9 +115,9 @@ void DepthClustering::link_joined_cells(int rows, int cols) {
       if (!member[cell]) continue;
       // Not linked yet, the cell is its own root: joining its left neighbour hangs it under that.
       parent[cell] = joins[cell] & kJoinsLeft ? parent[cell - 1] : cell;
-      if (joins[cell] & kJoinsUp) unite(cell, cell - cols);
+      if (joins[cell] & kJoinsUp) union_find_unite(parent_, cell, cell - cols);
     }
-    if (joins[last] & kJoinsFirstColumn) unite(last, first);
+    if (joins[last] & kJoinsFirstColumn) union_find_unite(parent_, last, first);
   }
 }
 
@@ -150,9 +132,9 @@ void DepthClustering::link_new_joins(int rows, int cols) {
     for (int cell = first; cell <= last; ++cell) {
       const uint8_t fresh = joins[cell] & ~previous[cell];
       if (fresh == 0) continue;
-      if (fresh & kJoinsLeft) unite(cell, cell - 1);
-      if (fresh & kJoinsUp) unite(cell, cell - cols);
-      if (fresh & kJoinsFirstColumn) unite(last, first);
+      if (fresh & kJoinsLeft) union_find_unite(parent_, cell, cell - 1);
+      if (fresh & kJoinsUp) union_find_unite(parent_, cell, cell - cols);
+      if (fresh & kJoinsFirstColumn) union_find_unite(parent_, last, first);
     }
   }
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "adaptive_lego_loam/core/union_find.h"
+
 namespace adaptive_lego_loam {
 namespace {
 
@@ -15,23 +17,6 @@ float squared_distance(const ScanPoint& a, const ScanPoint& b) {
 
 RunClustering::RunClustering(const RangeImageGeometry& geometry, const RunClusteringParams& params)
     : geometry_(geometry), params_(params) {}
-
-int32_t RunClustering::find_root(int32_t run) {
-  while (parent_[run] != run) {
-    parent_[run] = parent_[parent_[run]];  // path halving
-    run = parent_[run];
-  }
-  return run;
-}
-
-// The older run (smaller index) stays the root, as the paper keeps the smallest label.
-void RunClustering::unite(int32_t a, int32_t b) {
-  a = find_root(a);
-  b = find_root(b);
-  if (a == b) return;
-  if (a > b) std::swap(a, b);
-  parent_[b] = a;
-}
 
 void RunClustering::find_runs(const RangeImage& image) {
   if (row_cells_.empty()) return;
@@ -50,7 +35,7 @@ void RunClustering::find_runs(const RangeImage& image) {
   // The row is a ring: its last point follows its first.
   const int first = row_cells_.front(), last = row_cells_.back();
   if (first != last && squared_distance(image.point(first), image.point(last)) < run_squared) {
-    unite(run_of_[first], run_of_[last]);
+    union_find_unite(parent_, run_of_[first], run_of_[last]);
   }
 }
 
@@ -97,7 +82,7 @@ void RunClustering::merge_with_row_above(const RangeImage& image) {
     } else {
       nearest_in(p, col - half, col + half, best_squared, best_cell);
     }
-    if (best_cell >= 0) unite(run_of_[cell], run_of_[best_cell]);
+    if (best_cell >= 0) union_find_unite(parent_, run_of_[cell], run_of_[best_cell]);
   }
 }
 
@@ -124,7 +109,7 @@ void RunClustering::cluster(const RangeImage& image, const std::vector<uint8_t>&
   std::vector<int32_t> id_of_root(parent_.size(), ClusterLabels::kNone);
   for (int cell = 0; cell < image.size(); ++cell) {
     if (run_of_[cell] < 0) continue;
-    int32_t& id = id_of_root[find_root(run_of_[cell])];
+    int32_t& id = id_of_root[union_find_root(parent_, run_of_[cell])];
     if (id == ClusterLabels::kNone) {
       id = static_cast<int32_t>(out.size.size());
       out.size.push_back(0);

@@ -61,8 +61,6 @@ class DepthClustering {
   void link_joined_cells(int rows, int cols);
   void link_new_joins(int rows, int cols);
   void label_components(int cols, const ClusterSizeRule& rule, ClusterLabels& out);
-  int32_t root(int32_t cell);
-  void unite(int32_t a, int32_t b);
 
   // Flags of joins_: which neighbours a cell joins (each pair is flagged once).
   static constexpr uint8_t kJoinsLeft = 1, kJoinsUp = 2, kJoinsFirstColumn = 4;

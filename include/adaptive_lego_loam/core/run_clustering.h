@@ -36,8 +36,6 @@ class RunClustering {
   // How many columns to each side can hold a point within th_merge of a point at this
   // horizontal range.
   int merge_half_window(float horizontal_range) const;
-  int32_t find_root(int32_t run);
-  void unite(int32_t a, int32_t b);
 
   RangeImageGeometry geometry_;
   RunClusteringParams params_;
