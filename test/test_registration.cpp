@@ -1,5 +1,5 @@
-// The building blocks of odometry and mapping: the KD-tree against a brute-force search, and the
-// registration cost functions' analytic Jacobians against finite differences.
+// The building blocks of odometry and mapping: the KD-tree and the voxel map against a brute-force
+// search, and the registration cost functions' analytic Jacobians against finite differences.
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,10 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/kdtree.h"
+#include "adaptive_lego_loam/core/mapping.h"
 #include "adaptive_lego_loam/core/residuals.h"
+#include "adaptive_lego_loam/core/voxel_filter.h"
+#include "adaptive_lego_loam/core/voxel_map.h"
 
 using namespace adaptive_lego_loam;
 
@@ -152,6 +155,151 @@ void expect_jacobians_match(const ceres::CostFunction& cost, std::vector<double*
 }
 
 }  // namespace
+
+namespace {
+
+std::vector<Eigen::Vector3f> sorted_points(const Cloud& cloud) {
+  std::vector<Eigen::Vector3f> points;
+  for (const CloudPoint& p : cloud)
+    points.push_back(p.getVector3fMap());
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  return points;
+}
+
+// The voxel map's k nearest against a brute-force search over the voxel filter of
+// `expected_points`.
+void expect_nearest_match_brute_force(const VoxelMap& map, const Cloud& expected_points,
+                                      double leaf, unsigned seed) {
+  const CloudPtr centroids = voxel_filter(expected_points, leaf);
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> coordinate(-11.f, 11.f);
+  for (int query_index = 0; query_index < 300; ++query_index) {
+    const Eigen::Vector3f query(coordinate(random), coordinate(random), 0.1f * coordinate(random));
+    for (int k : {1, 6, 20}) {
+      for (float bound : {1.21f, 0.3f}) {
+        Eigen::Vector3f points[20];
+        float squared[20];
+        const int found = map.nearest(query, k, points, squared, bound);
+        const std::vector<float> expected = brute_force(*centroids, query, k, bound);
+        ASSERT_EQ(found, static_cast<int>(expected.size())) << "k " << k << " bound " << bound;
+        for (int i = 0; i < found; ++i) {
+          EXPECT_NEAR(squared[i], expected[i], 1e-5f);
+          EXPECT_NEAR((points[i] - query).squaredNorm(), squared[i], 1e-4f);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST(VoxelMap, HoldsTheVoxelFilterAndFindsItsNearestCentroids) {
+  const CloudPtr cloud = random_cloud(20000, 3);
+  VoxelMap map(0.4, 1.1);
+  map.add(*cloud);
+  const std::vector<Eigen::Vector3f> centroids = sorted_points(*map.centroids());
+  const std::vector<Eigen::Vector3f> filtered = sorted_points(*voxel_filter(*cloud, 0.4));
+  ASSERT_EQ(centroids.size(), filtered.size());
+  EXPECT_EQ(map.size(), filtered.size());
+  for (std::size_t i = 0; i < filtered.size(); ++i)
+    EXPECT_LT((centroids[i] - filtered[i]).norm(), 1e-5f);
+  expect_nearest_match_brute_force(map, *cloud, 0.4, 5);
+}
+
+TEST(VoxelMap, RemovedPointsLeaveTheRestAsIfAddedAlone) {
+  const CloudPtr first = random_cloud(15000, 21), second = random_cloud(15000, 22);
+  VoxelMap map(0.2, 1.1);  // cells of 6 x 6 x 6 voxels
+  map.add(*first);
+  map.add(*second);
+  map.remove(*first);
+  expect_nearest_match_brute_force(map, *second, 0.2, 9);
+  map.remove(*second);
+  EXPECT_TRUE(map.empty());
+  Eigen::Vector3f point;
+  float squared;
+  EXPECT_EQ(map.nearest(Eigen::Vector3f::Zero(), 1, &point, &squared, 1.f), 0);
+}
+
+TEST(VoxelMap, SearchesNoFurtherThanItsRadius) {
+  Cloud cloud;
+  CloudPoint p;
+  p.x = 1.5f;
+  p.y = p.z = 0.f;
+  cloud.push_back(p);
+  VoxelMap map(0.5, 1.0);
+  map.add(cloud);
+  Eigen::Vector3f point;
+  float squared;
+  EXPECT_EQ(map.nearest(Eigen::Vector3f::Zero(), 1, &point, &squared, 100.f), 0);
+  EXPECT_EQ(map.nearest(Eigen::Vector3f(0.6f, 0.f, 0.f), 1, &point, &squared, 100.f), 1);
+  EXPECT_NEAR(squared, 0.81f, 1e-5f);
+}
+
+namespace {
+
+// Keyframes 1 m apart along x, each holding one surface point below it.
+std::vector<Keyframe> keyframes_along_x(int count) {
+  std::vector<Keyframe> keyframes(count);
+  for (int i = 0; i < count; ++i) {
+    keyframes[i].index = i;
+    keyframes[i].pose.translation() = Eigen::Vector3d(i, 0.0, 0.0);
+    keyframes[i].corners.reset(new Cloud);
+    keyframes[i].surfaces.reset(new Cloud);
+    CloudPoint p;
+    p.x = 0.f;
+    p.y = 0.f;
+    p.z = -1.f;
+    keyframes[i].surfaces->push_back(p);
+  }
+  return keyframes;
+}
+
+std::vector<float> map_xs(const LocalMap& map) {
+  std::vector<float> xs;
+  const CloudPtr surfaces = map.surfaces();
+  for (const CloudPoint& p : *surfaces)
+    xs.push_back(p.x);
+  std::sort(xs.begin(), xs.end());
+  return xs;
+}
+
+}  // namespace
+
+TEST(LocalMap, LeavesOutTheNewestKeyframesWhileOlderOnesExist) {
+  MappingParams params;
+  params.local_map_lag_keyframes = 2;
+  LocalMap map(params);
+  EXPECT_TRUE(map.update(keyframes_along_x(1), Eigen::Vector3d::Zero(), 0));
+  EXPECT_EQ(map_xs(map), std::vector<float>({0.f}));  // the only keyframe
+  EXPECT_FALSE(map.update(keyframes_along_x(2), Eigen::Vector3d::Zero(), 0));
+  EXPECT_TRUE(map.update(keyframes_along_x(5), Eigen::Vector3d::Zero(), 0));
+  EXPECT_EQ(map_xs(map), std::vector<float>({0.f, 1.f, 2.f}));
+  params.local_map_lag_keyframes = 0;
+  LocalMap current(params);
+  current.update(keyframes_along_x(5), Eigen::Vector3d::Zero(), 0);
+  EXPECT_EQ(map_xs(current), std::vector<float>({0.f, 1.f, 2.f, 3.f, 4.f}));
+}
+
+TEST(LocalMap, FollowsTheKeyframesNearItAndTheirCorrections) {
+  MappingParams params;
+  params.local_map_radius = 2.5;
+  params.local_map_lag_keyframes = 0;
+  LocalMap map(params);
+  std::vector<Keyframe> keyframes = keyframes_along_x(8);
+  map.update(keyframes, Eigen::Vector3d(6.0, 0.0, 0.0), 0);
+  EXPECT_EQ(map_xs(map), std::vector<float>({4.f, 5.f, 6.f, 7.f}));
+  map.update(keyframes, Eigen::Vector3d(2.0, 0.0, 0.0), 0);  // keyframes leave and enter
+  EXPECT_EQ(map_xs(map), std::vector<float>({0.f, 1.f, 2.f, 3.f, 4.f}));
+  for (Keyframe& keyframe : keyframes)
+    keyframe.pose.translation().y() = 1.0;  // a loop closure moved them all
+  EXPECT_FALSE(map.update(keyframes, Eigen::Vector3d(2.0, 0.0, 0.0), 0));
+  EXPECT_TRUE(map.update(keyframes, Eigen::Vector3d(2.0, 0.0, 0.0), 1));
+  const CloudPtr surfaces = map.surfaces();
+  for (const CloudPoint& p : *surfaces)
+    EXPECT_FLOAT_EQ(p.y, 1.f);
+}
 
 TEST(RegistrationCost, EulerJacobianMatchesFiniteDifferences) {
   const Correspondences matches = some_matches();

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "adaptive_lego_loam/core/nearest_candidates.h"
+
 namespace adaptive_lego_loam {
 namespace {
 
@@ -23,30 +25,6 @@ struct Node {
   uint32_t axis;
 };
 constexpr uint32_t kLeaf = 3;
-
-// The k best candidates so far, nearest first; `worst` is the distance a point must beat.
-struct Candidates {
-  int k, count;
-  uint32_t* indices;
-  float* squared;
-  float worst;
-
-  void add(float distance, uint32_t index) {
-    int i = count;
-    for (; i > 0 && squared[i - 1] > distance; --i) {
-      if (i < k) {
-        squared[i] = squared[i - 1];
-        indices[i] = indices[i - 1];
-      }
-    }
-    if (i < k) {
-      squared[i] = distance;
-      indices[i] = index;
-    }
-    if (count < k) ++count;
-    if (count == k) worst = squared[k - 1];
-  }
-};
 
 }  // namespace
 
@@ -104,7 +82,7 @@ struct PointKdTree::Index {
   // squared distance from the query to the current cell along it; their sum `cell_distance`
   // bounds every point of the cell from below.
   void search(uint32_t node_index, const float* query, float cell_distance, float* offsets,
-              Candidates& found) const {
+              NearestCandidates& found) const {
     const Node& node = nodes[node_index];
     if (node.axis == kLeaf) {
       for (uint32_t i = node.right_or_begin; i < node.end; ++i) {
@@ -148,8 +126,9 @@ int PointKdTree::nearest(const Eigen::Vector3f& query, int k, uint32_t* indices,
                          float* squared_distances, float max_squared_distance) const {
   if (!index_ || k <= 0) return 0;
   // Points must beat `worst` strictly: start just above the bound to include it.
-  Candidates found{k, 0, indices, squared_distances,
-                   std::nextafter(max_squared_distance, std::numeric_limits<float>::infinity())};
+  NearestCandidates found{
+      k, 0, indices, squared_distances,
+      std::nextafter(max_squared_distance, std::numeric_limits<float>::infinity())};
   float offsets[3] = {0.f, 0.f, 0.f};
   index_->search(0, query.data(), 0.f, offsets, found);
   return found.count;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "adaptive_lego_loam/core/voxel_filter.h"
+
 namespace adaptive_lego_loam {
 
 void TransformFusion::update_mapping(const Eigen::Isometry3d& odometry_pose,

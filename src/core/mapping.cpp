@@ -19,6 +19,8 @@ constexpr int kNeighbours = 5;
 constexpr float kMaxNeighbourDistance = 1.0f;  // m, as LOAM
 constexpr double kMaxPlaneDeviation = 0.2;     // m
 constexpr int kMinMatches = 20;
+// Searched a little beyond 1 m, so that a rejected point need not be searched again at once.
+constexpr float kSearchRadius = 1.1f;
 
 // Pulls the translation along `direction` toward `target`.
 struct DirectionPrior {
@@ -33,15 +35,15 @@ struct DirectionPrior {
 };
 
 // A line through the neighbours when one spread dominates.
-std::optional<LineMatch> fit_line(const Cloud& map, const uint32_t* indices,
+std::optional<LineMatch> fit_line(const Eigen::Vector3f* neighbours,
                                   const Eigen::Vector3d& sensor_point) {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (int k = 0; k < kNeighbours; ++k)
-    centroid += map[indices[k]].getVector3fMap().cast<double>();
+    centroid += neighbours[k].cast<double>();
   centroid /= kNeighbours;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   for (int k = 0; k < kNeighbours; ++k) {
-    const Eigen::Vector3d d = map[indices[k]].getVector3fMap().cast<double>() - centroid;
+    const Eigen::Vector3d d = neighbours[k].cast<double>() - centroid;
     covariance += d * d.transpose();
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
@@ -51,13 +53,13 @@ std::optional<LineMatch> fit_line(const Cloud& map, const uint32_t* indices,
 }
 
 // A plane through the neighbours when none lies more than kMaxPlaneDeviation off it.
-std::optional<PlaneMatch> fit_plane(const Cloud& map, const uint32_t* indices,
+std::optional<PlaneMatch> fit_plane(const Eigen::Vector3f* neighbours,
                                     const Eigen::Vector3d& sensor_point) {
   // n . x = -1 in the least-squares sense, then normalised: the plane n . x + d = 0. By the
   // normal equations (3 x 3; a QR of the 5 x 3 system took a tenth of the mapping).
   Eigen::Matrix<double, kNeighbours, 3> points;
   for (int k = 0; k < kNeighbours; ++k)
-    points.row(k) = map[indices[k]].getVector3fMap().cast<double>();
+    points.row(k) = neighbours[k].cast<double>();
   const Eigen::Matrix3d gram = points.transpose() * points;
   Eigen::Vector3d normal = gram.ldlt().solve(-points.colwise().sum().transpose());
   const double norm = normal.norm();
@@ -74,18 +76,18 @@ std::optional<PlaneMatch> fit_plane(const Cloud& map, const uint32_t* indices,
 
 // Each scan point's correspondence of one kind (a line on the map's corners or a plane on its
 // surfaces), fitted to its kNeighbours nearest map points when all lie within LOAM's 1 m. Later
-// iterations search again only for points that moved enough to change that: the distance to a
-// query's k-th nearest point changes by at most the distance the query moved, so with the 5th
-// and 6th nearest distances kept, a point that moved by m keeps its neighbours while
-// 5th + 2 m < 6th, its acceptance while 5th + m <= 1 m, and its rejection while
-// 5th - m > 1 m. The result is the same as searching again every time.
+// iterations search again only for points that moved more than `keep_distance` and enough to
+// change that: the distance to a query's k-th nearest point changes by at most the distance the
+// query moved, so with the 5th and 6th nearest distances kept, a point that moved by m keeps its
+// neighbours while 5th + 2 m < 6th, its acceptance while 5th + m <= 1 m, and its rejection while
+// 5th - m > 1 m.
 template <class Match>
 class CorrespondenceCache {
  public:
-  using Fit = std::optional<Match> (*)(const Cloud&, const uint32_t*, const Eigen::Vector3d&);
+  using Fit = std::optional<Match> (*)(const Eigen::Vector3f*, const Eigen::Vector3d&);
 
-  CorrespondenceCache(const Cloud& scan, const PointKdTree& tree, const Cloud& map, Fit fit)
-      : scan_(scan), tree_(tree), map_(map), fit_(fit), entries_(scan.size()) {}
+  CorrespondenceCache(const Cloud& scan, const VoxelMap& map, Fit fit, float keep_distance)
+      : scan_(scan), map_(map), fit_(fit), keep_distance_(keep_distance), entries_(scan.size()) {}
 
   // The correspondences with the scan placed by (rotation, translation), in scan order.
   void update(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation,
@@ -101,9 +103,6 @@ class CorrespondenceCache {
   }
 
  private:
-  // Searched a little beyond 1 m, so that a rejected point need not be searched again at once.
-  static constexpr float kSearchRadius = 1.1f;
-
   struct Entry {
     bool searched = false;
     Eigen::Vector3f searched_at;
@@ -112,30 +111,31 @@ class CorrespondenceCache {
     std::optional<Match> match;
   };
 
-  static bool still_valid(const Entry& entry, const Eigen::Vector3f& at) {
+  bool still_valid(const Entry& entry, const Eigen::Vector3f& at) const {
     const float moved = (at - entry.searched_at).norm();
+    if (moved <= keep_distance_) return true;
     if (entry.fifth - moved > kMaxNeighbourDistance) return true;
     return entry.fifth + moved <= kMaxNeighbourDistance && entry.fifth + 2.f * moved < entry.sixth;
   }
 
   void search(const Eigen::Vector3f& at, const Eigen::Vector3d& sensor_point, Entry& entry) const {
-    uint32_t indices[kNeighbours + 1];
+    Eigen::Vector3f neighbours[kNeighbours + 1];
     float squared[kNeighbours + 1];
     const int found =
-        tree_.nearest(at, kNeighbours + 1, indices, squared, kSearchRadius * kSearchRadius);
+        map_.nearest(at, kNeighbours + 1, neighbours, squared, kSearchRadius * kSearchRadius);
     entry.searched = true;
     entry.searched_at = at;
     entry.fifth = found >= kNeighbours ? std::sqrt(squared[kNeighbours - 1]) : kSearchRadius;
     entry.sixth = found > kNeighbours ? std::sqrt(squared[kNeighbours]) : kSearchRadius;
     const bool close = found >= kNeighbours &&
                        squared[kNeighbours - 1] <= kMaxNeighbourDistance * kMaxNeighbourDistance;
-    entry.match = close ? fit_(map_, indices, sensor_point) : std::nullopt;
+    entry.match = close ? fit_(neighbours, sensor_point) : std::nullopt;
   }
 
   const Cloud& scan_;
-  const PointKdTree& tree_;
-  const Cloud& map_;
+  const VoxelMap& map_;
   Fit fit_;
+  float keep_distance_;
   std::vector<Entry> entries_;
 };
 
@@ -161,13 +161,18 @@ Eigen::Matrix<double, 6, 6> normal_matrix(ceres::Problem& problem, double* rotat
 }  // namespace
 
 LocalMap::LocalMap(const MappingParams& params)
-    : params_(params), corner_sums_(params.corner_voxel), surface_sums_(params.surface_voxel) {}
+    : params_(params),
+      corner_map_(params.corner_voxel, kSearchRadius),
+      surface_map_(params.surface_voxel, kSearchRadius) {}
 
 std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
                                   const Eigen::Vector3d& position) const {
   std::vector<int> chosen;
   const double radius_squared = params_.local_map_radius * params_.local_map_radius;
-  for (int i = static_cast<int>(keyframes.size()) - 1; i >= 0; --i) {
+  // The newest keyframes stay out while older ones exist (see
+  // MappingParams::local_map_lag_keyframes).
+  const int newest = static_cast<int>(keyframes.size()) - 1;
+  for (int i = newest - std::min(params_.local_map_lag_keyframes, newest); i >= 0; --i) {
     if ((keyframes[i].pose.translation() - position).squaredNorm() > radius_squared) continue;
     chosen.push_back(i);
     if (static_cast<int>(chosen.size()) >= params_.local_map_keyframes) break;
@@ -179,18 +184,10 @@ std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
 bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position,
                       int version) {
   std::vector<int> chosen = select(keyframes, position);
-  // Rebuilding the KD-trees costs more than matching: only when keyframe poses changed or enough
-  // of the chosen keyframes are missing from the map.
-  int missing = 0;
-  for (int index : chosen) {
-    missing += !std::binary_search(selected_.begin(), selected_.end(), index);
-  }
-  if (version == version_ && missing < std::max(1, params_.local_map_refresh_keyframes)) {
-    return false;
-  }
+  if (version == version_ && chosen == selected_) return false;
   if (version != version_) {
-    corner_sums_.clear();
-    surface_sums_.clear();
+    corner_map_.clear();
+    surface_map_.clear();
     placed_.clear();
     selected_.clear();
   }
@@ -202,25 +199,21 @@ bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vecto
   }
   selected_ = std::move(chosen);
   version_ = version;
-  corners_ = corner_sums_.centroids();
-  surfaces_ = surface_sums_.centroids();
-  corner_tree_.build(corners_);
-  surface_tree_.build(surfaces_);
   return true;
 }
 
 void LocalMap::put_in(const Keyframe& keyframe) {
   Placed placed{transform_cloud(*keyframe.corners, keyframe.pose),
                 transform_cloud(*keyframe.surfaces, keyframe.pose)};
-  corner_sums_.add(*placed.corners);
-  surface_sums_.add(*placed.surfaces);
+  corner_map_.add(*placed.corners);
+  surface_map_.add(*placed.surfaces);
   placed_[keyframe.index] = std::move(placed);
 }
 
 void LocalMap::take_out(int keyframe) {
   const auto placed = placed_.find(keyframe);
-  corner_sums_.remove(*placed->second.corners);
-  surface_sums_.remove(*placed->second.surfaces);
+  corner_map_.remove(*placed->second.corners);
+  surface_map_.remove(*placed->second.surfaces);
   placed_.erase(placed);
 }
 
@@ -237,8 +230,9 @@ MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfac
   Eigen::Matrix<double, 6, 6> keep = Eigen::Matrix<double, 6, 6>::Identity();
   Correspondences matches;
   ceres::EigenQuaternionManifold quaternion_manifold;
-  CorrespondenceCache<LineMatch> lines(corners, map.corner_tree(), *map.corners(), fit_line);
-  CorrespondenceCache<PlaneMatch> planes(surfaces, map.surface_tree(), *map.surfaces(), fit_plane);
+  const float keep_distance = static_cast<float>(params_.keep_correspondence_distance);
+  CorrespondenceCache<LineMatch> lines(corners, map.corner_map(), fit_line, keep_distance);
+  CorrespondenceCache<PlaneMatch> planes(surfaces, map.surface_map(), fit_plane, keep_distance);
 
   for (int iteration = 0; iteration < params_.max_iterations; ++iteration) {
     const Eigen::Matrix3d rotation_matrix = rotation.toRotationMatrix();

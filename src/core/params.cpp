@@ -226,6 +226,7 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.boolean("enabled", m.enabled);
   in.number("max_iterations", m.max_iterations, 1, 100);
   in.number("solver_iterations", m.solver_iterations, 1, 100);
+  in.number("keep_correspondence_distance", m.keep_correspondence_distance, 0.0, 1.0);
   in.number("huber_loss", m.huber_loss, 0.001, 100.0);
   in.number("corner_voxel", m.corner_voxel, 0.01, 10.0);
   in.number("surface_voxel", m.surface_voxel, 0.01, 10.0);
@@ -235,7 +236,7 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.number("keyframe_angle_deg", m.keyframe_angle_deg, 0.0, 180.0);
   in.number("local_map_radius", m.local_map_radius, 1.0, 1000.0);
   in.number("local_map_keyframes", m.local_map_keyframes, 1, 10000);
-  in.number("local_map_refresh_keyframes", m.local_map_refresh_keyframes, 1, 10000);
+  in.number("local_map_lag_keyframes", m.local_map_lag_keyframes, 0, 10000);
   in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
   in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
   in.number("max_motion_change", m.max_motion_change, 0.0, 100.0);

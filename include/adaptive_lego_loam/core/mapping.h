@@ -10,10 +10,9 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/cloud.h"
-#include "adaptive_lego_loam/core/kdtree.h"
 #include "adaptive_lego_loam/core/keyframe.h"
 #include "adaptive_lego_loam/core/params.h"
-#include "adaptive_lego_loam/core/voxel_filter.h"
+#include "adaptive_lego_loam/core/voxel_map.h"
 
 namespace adaptive_lego_loam {
 
@@ -25,11 +24,12 @@ class LocalMap {
   // keyframe poses change) differs from the last update: keyframes that left the set are taken
   // out, new ones put in (everything again after a version change). Returns whether it changed.
   bool update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position, int version);
-  const CloudPtr& corners() const { return corners_; }
-  const CloudPtr& surfaces() const { return surfaces_; }
-  const PointKdTree& corner_tree() const { return corner_tree_; }
-  const PointKdTree& surface_tree() const { return surface_tree_; }
-  bool empty() const { return corners_->empty() && surfaces_->empty(); }
+  const VoxelMap& corner_map() const { return corner_map_; }
+  const VoxelMap& surface_map() const { return surface_map_; }
+  // The voxel centroids, made on each call (for display).
+  CloudPtr corners() const { return corner_map_.centroids(); }
+  CloudPtr surfaces() const { return surface_map_.centroids(); }
+  bool empty() const { return corner_map_.empty() && surface_map_.empty(); }
 
  private:
   // A keyframe's features as they were put in the map (to take them out again).
@@ -44,10 +44,8 @@ class LocalMap {
   MappingParams params_;
   std::vector<int> selected_;
   int version_ = -1;
-  VoxelSums corner_sums_, surface_sums_;
+  VoxelMap corner_map_, surface_map_;
   std::map<int, Placed> placed_;
-  CloudPtr corners_{new Cloud}, surfaces_{new Cloud};
-  PointKdTree corner_tree_, surface_tree_;
 };
 
 struct MapMatchResult {

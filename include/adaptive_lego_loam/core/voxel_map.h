@@ -1,0 +1,75 @@
+#pragma once
+// The mapping stage's local map as an incremental voxel filter that answers nearest-neighbour
+// queries itself: points go in and out keyframe by keyframe, each voxel keeps the centroid of its
+// points, and a query visits the coarse cells (at least the search radius wide) around it. No
+// KD-tree is rebuilt when keyframes enter or leave the map, which is what made the scans that
+// refreshed the map several times slower than the others.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "adaptive_lego_loam/core/cloud.h"
+#include "adaptive_lego_loam/core/voxel_hash.h"
+
+namespace adaptive_lego_loam {
+
+class VoxelMap {
+ public:
+  // `leaf`: the voxel filter's leaf (m); `max_radius`: the largest search radius (m) queries use.
+  VoxelMap(double leaf, double max_radius);
+
+  void add(const Cloud& points);
+  // `points` must have been added before, unchanged.
+  void remove(const Cloud& points);
+  void clear();
+  std::size_t size() const { return voxels_.size() - free_voxels_.size(); }
+  bool empty() const { return size() == 0; }
+
+  // Up to k voxel centroids nearest to `query` within sqrt(max_squared_distance) (inclusive, and
+  // never beyond max_radius), nearest first: fills `points` and `squared_distances` (each at
+  // least k long) and returns how many it found. Ties go to the centroid met first.
+  int nearest(const Eigen::Vector3f& query, int k, Eigen::Vector3f* points,
+              float* squared_distances, float max_squared_distance) const;
+
+  // Every voxel's centroid (intensity averaged too), for display.
+  CloudPtr centroids() const;
+
+ private:
+  struct Voxel {
+    double sum[4] = {0.0, 0.0, 0.0, 0.0};  // x, y, z, intensity
+    int count = 0;
+    uint64_t key = 0;
+    uint32_t cell = 0;
+    uint32_t slot = 0;  // in the cell's centroids
+  };
+  // A cell's voxels as packed centroids (x, y, z, voxel id), scanned by queries.
+  struct Centroid {
+    float x, y, z;
+    uint32_t voxel;
+  };
+  struct Cell {
+    uint64_t key = 0;
+    std::vector<Centroid> centroids;
+  };
+
+  void add_point(const CloudPoint& p);
+  void remove_point(const CloudPoint& p);
+  uint32_t new_voxel(uint64_t key, int64_t x, int64_t y, int64_t z);
+  void delete_voxel(uint32_t id);
+  void update_centroid(uint32_t id);
+  int64_t cell_of(int64_t voxel_index) const;
+
+  double leaf_, inverse_leaf_;
+  int64_t voxels_per_cell_;  // along each axis
+  double cell_size_;
+  float max_squared_radius_;
+  VoxelHashTable<uint32_t> voxel_ids_;  // voxel key -> id + 1 (0: none)
+  VoxelHashTable<uint32_t> cell_ids_;   // cell key -> id + 1
+  std::vector<Voxel> voxels_;
+  std::vector<uint32_t> free_voxels_;
+  std::vector<Cell> cells_;
+  std::vector<uint32_t> free_cells_;
+};
+
+}  // namespace adaptive_lego_loam

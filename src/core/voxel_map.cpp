@@ -1,0 +1,208 @@
+#include "adaptive_lego_loam/core/voxel_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "adaptive_lego_loam/core/nearest_candidates.h"
+
+namespace adaptive_lego_loam {
+namespace {
+
+int64_t floor_divide(int64_t value, int64_t divisor) {
+  const int64_t quotient = value / divisor;
+  return quotient * divisor > value ? quotient - 1 : quotient;
+}
+
+}  // namespace
+
+VoxelMap::VoxelMap(double leaf, double max_radius)
+    : leaf_(leaf),
+      inverse_leaf_(1.0 / leaf),
+      voxels_per_cell_(
+          std::max<int64_t>(1, static_cast<int64_t>(std::ceil(2.0 * max_radius / leaf)))),
+      cell_size_(voxels_per_cell_ * leaf),
+      max_squared_radius_(static_cast<float>(max_radius * max_radius)) {}
+
+int64_t VoxelMap::cell_of(int64_t voxel_index) const {
+  return floor_divide(voxel_index, voxels_per_cell_);
+}
+
+void VoxelMap::add(const Cloud& points) {
+  for (const CloudPoint& p : points)
+    add_point(p);
+}
+
+void VoxelMap::remove(const Cloud& points) {
+  for (const CloudPoint& p : points)
+    remove_point(p);
+}
+
+void VoxelMap::clear() {
+  voxel_ids_.clear();
+  cell_ids_.clear();
+  voxels_.clear();
+  free_voxels_.clear();
+  cells_.clear();
+  free_cells_.clear();
+}
+
+void VoxelMap::add_point(const CloudPoint& p) {
+  const int64_t x = voxel_index(p.x, inverse_leaf_), y = voxel_index(p.y, inverse_leaf_),
+                z = voxel_index(p.z, inverse_leaf_);
+  const uint64_t key = pack_voxel_key(x, y, z);
+  uint32_t id = 0;
+  if (const uint32_t* found = voxel_ids_.find(key)) {
+    id = *found - 1;
+  } else {
+    id = new_voxel(key, x, y, z);
+  }
+  Voxel& voxel = voxels_[id];
+  voxel.sum[0] += p.x;
+  voxel.sum[1] += p.y;
+  voxel.sum[2] += p.z;
+  voxel.sum[3] += p.intensity;
+  ++voxel.count;
+  update_centroid(id);
+}
+
+void VoxelMap::remove_point(const CloudPoint& p) {
+  const uint64_t key =
+      pack_voxel_key(voxel_index(p.x, inverse_leaf_), voxel_index(p.y, inverse_leaf_),
+                     voxel_index(p.z, inverse_leaf_));
+  const uint32_t* found = voxel_ids_.find(key);
+  if (!found) return;
+  const uint32_t id = *found - 1;
+  Voxel& voxel = voxels_[id];
+  voxel.sum[0] -= p.x;
+  voxel.sum[1] -= p.y;
+  voxel.sum[2] -= p.z;
+  voxel.sum[3] -= p.intensity;
+  if (--voxel.count == 0) {
+    delete_voxel(id);
+  } else {
+    update_centroid(id);
+  }
+}
+
+uint32_t VoxelMap::new_voxel(uint64_t key, int64_t x, int64_t y, int64_t z) {
+  uint32_t id;
+  if (free_voxels_.empty()) {
+    id = static_cast<uint32_t>(voxels_.size());
+    voxels_.emplace_back();
+  } else {
+    id = free_voxels_.back();
+    free_voxels_.pop_back();
+    voxels_[id] = Voxel();
+  }
+  voxel_ids_.find_or_insert(key) = id + 1;
+
+  const uint64_t cell_key = pack_voxel_key(cell_of(x), cell_of(y), cell_of(z));
+  uint32_t& cell_slot = cell_ids_.find_or_insert(cell_key);
+  if (cell_slot == 0) {
+    if (free_cells_.empty()) {
+      cells_.emplace_back();
+      cell_slot = static_cast<uint32_t>(cells_.size());
+    } else {
+      cell_slot = free_cells_.back() + 1;
+      free_cells_.pop_back();
+    }
+    cells_[cell_slot - 1].key = cell_key;
+  }
+  Voxel& voxel = voxels_[id];
+  voxel.key = key;
+  voxel.cell = cell_slot - 1;
+  Cell& cell = cells_[voxel.cell];
+  voxel.slot = static_cast<uint32_t>(cell.centroids.size());
+  cell.centroids.push_back({0.f, 0.f, 0.f, id});
+  return id;
+}
+
+void VoxelMap::delete_voxel(uint32_t id) {
+  const Voxel& voxel = voxels_[id];
+  Cell& cell = cells_[voxel.cell];
+  // The cell's last centroid takes the freed slot.
+  cell.centroids[voxel.slot] = cell.centroids.back();
+  voxels_[cell.centroids[voxel.slot].voxel].slot = voxel.slot;
+  cell.centroids.pop_back();
+  if (cell.centroids.empty()) {
+    cell_ids_.erase(cell.key);
+    free_cells_.push_back(voxel.cell);
+  }
+  voxel_ids_.erase(voxel.key);
+  free_voxels_.push_back(id);
+}
+
+void VoxelMap::update_centroid(uint32_t id) {
+  const Voxel& voxel = voxels_[id];
+  Centroid& centroid = cells_[voxel.cell].centroids[voxel.slot];
+  centroid.x = static_cast<float>(voxel.sum[0] / voxel.count);
+  centroid.y = static_cast<float>(voxel.sum[1] / voxel.count);
+  centroid.z = static_cast<float>(voxel.sum[2] / voxel.count);
+}
+
+int VoxelMap::nearest(const Eigen::Vector3f& query, int k, Eigen::Vector3f* points,
+                      float* squared_distances, float max_squared_distance) const {
+  if (k <= 0 || empty()) return 0;
+  const float bound = std::min(max_squared_distance, max_squared_radius_);
+  constexpr int kOnStack = 16;
+  uint32_t stack_ids[kOnStack];
+  std::vector<uint32_t> heap_ids(k > kOnStack ? k : 0);
+  uint32_t* voxel_ids = k > kOnStack ? heap_ids.data() : stack_ids;
+  NearestCandidates found{k, 0, voxel_ids, squared_distances,
+                          std::nextafter(bound, std::numeric_limits<float>::infinity())};
+  // A cell is at least twice the radius wide, so the ball around the query lies in the 2 x 2 x 2
+  // cells on the query's side of its cell's middle along each axis.
+  int64_t first_cell[3];
+  float gap_squared[3][2];  // per axis: the squared gap to the first and the second cell
+  for (int a = 0; a < 3; ++a) {
+    const int64_t cell = cell_of(voxel_index(query[a], inverse_leaf_));
+    const double low = cell * cell_size_;
+    const double into = query[a] - low;
+    const bool upper_half = into >= 0.5 * cell_size_;
+    first_cell[a] = upper_half ? cell : cell - 1;
+    const double gap = upper_half ? std::max(0.0, cell_size_ - into) : std::max(0.0, into);
+    gap_squared[a][upper_half ? 0 : 1] = 0.f;
+    gap_squared[a][upper_half ? 1 : 0] = static_cast<float>(gap * gap);
+  }
+  for (int ix = 0; ix < 2; ++ix) {
+    for (int iy = 0; iy < 2; ++iy) {
+      for (int iz = 0; iz < 2; ++iz) {
+        const float gap = gap_squared[0][ix] + gap_squared[1][iy] + gap_squared[2][iz];
+        if (gap >= found.worst) continue;
+        const uint32_t* cell_id = cell_ids_.find(
+            pack_voxel_key(first_cell[0] + ix, first_cell[1] + iy, first_cell[2] + iz));
+        if (!cell_id) continue;
+        for (const Centroid& c : cells_[*cell_id - 1].centroids) {
+          const float dx = query[0] - c.x, dy = query[1] - c.y, dz = query[2] - c.z;
+          const float distance = dx * dx + dy * dy + dz * dz;
+          if (distance < found.worst) found.add(distance, c.voxel);
+        }
+      }
+    }
+  }
+  for (int i = 0; i < found.count; ++i) {
+    const Centroid& c = cells_[voxels_[voxel_ids[i]].cell].centroids[voxels_[voxel_ids[i]].slot];
+    points[i] = Eigen::Vector3f(c.x, c.y, c.z);
+  }
+  return found.count;
+}
+
+CloudPtr VoxelMap::centroids() const {
+  CloudPtr out(new Cloud);
+  out->reserve(size());
+  for (const Cell& cell : cells_) {
+    for (const Centroid& c : cell.centroids) {
+      const Voxel& voxel = voxels_[c.voxel];
+      CloudPoint p;
+      p.x = c.x;
+      p.y = c.y;
+      p.z = c.z;
+      p.intensity = static_cast<float>(voxel.sum[3] / voxel.count);
+      out->push_back(p);
+    }
+  }
+  return out;
+}
+
+}  // namespace adaptive_lego_loam
