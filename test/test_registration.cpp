@@ -271,34 +271,110 @@ TEST(LocalMap, LeavesOutTheNewestKeyframesWhileOlderOnesExist) {
   MappingParams params;
   params.local_map_lag_keyframes = 2;
   LocalMap map(params);
-  EXPECT_TRUE(map.update(keyframes_along_x(1), Eigen::Vector3d::Zero(), 0));
+  EXPECT_TRUE(map.update(keyframes_along_x(1), Eigen::Vector3d::Zero()));
   EXPECT_EQ(map_xs(map), std::vector<float>({0.f}));  // the only keyframe
-  EXPECT_FALSE(map.update(keyframes_along_x(2), Eigen::Vector3d::Zero(), 0));
-  EXPECT_TRUE(map.update(keyframes_along_x(5), Eigen::Vector3d::Zero(), 0));
+  EXPECT_FALSE(map.update(keyframes_along_x(2), Eigen::Vector3d::Zero()));
+  EXPECT_TRUE(map.update(keyframes_along_x(5), Eigen::Vector3d::Zero()));
   EXPECT_EQ(map_xs(map), std::vector<float>({0.f, 1.f, 2.f}));
   params.local_map_lag_keyframes = 0;
   LocalMap current(params);
-  current.update(keyframes_along_x(5), Eigen::Vector3d::Zero(), 0);
+  current.update(keyframes_along_x(5), Eigen::Vector3d::Zero());
   EXPECT_EQ(map_xs(current), std::vector<float>({0.f, 1.f, 2.f, 3.f, 4.f}));
 }
 
-TEST(LocalMap, FollowsTheKeyframesNearItAndTheirCorrections) {
+TEST(LocalMap, FollowsTheKeyframesNearIt) {
   MappingParams params;
   params.local_map_radius = 2.5;
   params.local_map_lag_keyframes = 0;
   LocalMap map(params);
-  std::vector<Keyframe> keyframes = keyframes_along_x(8);
-  map.update(keyframes, Eigen::Vector3d(6.0, 0.0, 0.0), 0);
+  const std::vector<Keyframe> keyframes = keyframes_along_x(8);
+  map.update(keyframes, Eigen::Vector3d(6.0, 0.0, 0.0));
   EXPECT_EQ(map_xs(map), std::vector<float>({4.f, 5.f, 6.f, 7.f}));
-  map.update(keyframes, Eigen::Vector3d(2.0, 0.0, 0.0), 0);  // keyframes leave and enter
+  EXPECT_TRUE(map.update(keyframes, Eigen::Vector3d(2.0, 0.0, 0.0)));  // keyframes leave and enter
   EXPECT_EQ(map_xs(map), std::vector<float>({0.f, 1.f, 2.f, 3.f, 4.f}));
+  EXPECT_FALSE(map.update(keyframes, Eigen::Vector3d(2.0, 0.0, 0.0)));
+}
+
+TEST(LocalMap, AfterALoopAnswersFromTheOldPlacementUntilTheNewOneIsComplete) {
+  MappingParams params;
+  params.local_map_lag_keyframes = 0;
+  LocalMap map(params);
+  std::vector<Keyframe> keyframes = keyframes_along_x(6);
+  map.update(keyframes, Eigen::Vector3d::Zero());
+  Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
+  correction.translation() = Eigen::Vector3d(0.0, 1.0, 0.0);
   for (Keyframe& keyframe : keyframes)
-    keyframe.pose.translation().y() = 1.0;  // a loop closure moved them all
-  EXPECT_FALSE(map.update(keyframes, Eigen::Vector3d(2.0, 0.0, 0.0), 0));
-  EXPECT_TRUE(map.update(keyframes, Eigen::Vector3d(2.0, 0.0, 0.0), 1));
+    keyframe.pose = correction * keyframe.pose;
+  map.keyframes_moved(correction);
+  // Two keyframes a time: the old placement serves, reached through the inverse correction.
+  for (int update = 0; update < 2; ++update) {
+    EXPECT_FALSE(map.update(keyframes, Eigen::Vector3d::Zero()));
+    EXPECT_TRUE(map.to_placement().isApprox(correction.inverse()));
+    const CloudPtr surfaces = map.surfaces();
+    for (const CloudPoint& p : *surfaces)
+      EXPECT_FLOAT_EQ(p.y, 0.f);
+  }
+  EXPECT_TRUE(map.update(keyframes, Eigen::Vector3d::Zero()));
+  EXPECT_TRUE(map.to_placement().isApprox(Eigen::Isometry3d::Identity()));
+  EXPECT_EQ(map_xs(map), std::vector<float>({0.f, 1.f, 2.f, 3.f, 4.f, 5.f}));
   const CloudPtr surfaces = map.surfaces();
   for (const CloudPoint& p : *surfaces)
     EXPECT_FLOAT_EQ(p.y, 1.f);
+}
+
+namespace {
+
+// A corner of a room in the map frame: floor, two walls (every 0.1 m).
+CloudPtr room_corner() {
+  CloudPtr cloud(new Cloud);
+  auto add = [&cloud](float x, float y, float z) {
+    CloudPoint p;
+    p.x = x;
+    p.y = y;
+    p.z = z;
+    cloud->push_back(p);
+  };
+  for (float u = -4.f; u <= 4.f; u += 0.1f) {
+    for (float v = -4.f; v <= 4.f; v += 0.1f) {
+      add(u, v, -1.5f);
+      if (v >= -1.5f && v <= 2.f) add(5.f, u, v);
+      if (v >= -1.5f && v <= 2.f) add(u, 4.f, v);
+    }
+  }
+  return cloud;
+}
+
+}  // namespace
+
+TEST(ScanToMap, MatchesThroughTheOldPlacementAfterALoop) {
+  MappingParams params;
+  params.local_map_lag_keyframes = 0;
+  params.max_iterations = 5;
+  LocalMap map(params);
+  Keyframe keyframe;
+  keyframe.corners.reset(new Cloud);
+  keyframe.surfaces = room_corner();
+  map.update({keyframe}, Eigen::Vector3d::Zero());
+
+  Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
+  correction.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  correction.translation() = Eigen::Vector3d(2.0, -1.0, 0.1);
+  keyframe.pose = correction * keyframe.pose;
+  map.keyframes_moved(correction);
+  ASSERT_FALSE(map.to_placement().isApprox(Eigen::Isometry3d::Identity()));
+
+  // The sensor 0.5 m from the map origin, in the new frame; the scan sees the room from there.
+  Eigen::Isometry3d old_frame_pose = Eigen::Isometry3d::Identity();
+  old_frame_pose.translation() = Eigen::Vector3d(0.5, 0.2, 0.0);
+  const Eigen::Isometry3d truth = correction * old_frame_pose;
+  const CloudPtr scan =
+      voxel_filter(*transform_cloud(*room_corner(), old_frame_pose.inverse()), 0.3);
+  Eigen::Isometry3d guess = truth;
+  guess.translation() += Eigen::Vector3d(0.08, -0.06, 0.03);
+  const MapMatchResult result = ScanToMapMatcher(params).match(Cloud(), *scan, map, guess);
+  ASSERT_TRUE(result.matched);
+  EXPECT_LT((result.pose.translation() - truth.translation()).norm(), 0.01);
+  EXPECT_LT(Eigen::AngleAxisd(result.pose.linear().transpose() * truth.linear()).angle(), 0.002);
 }
 
 TEST(RegistrationCost, EulerJacobianMatchesFiniteDifferences) {

@@ -271,7 +271,7 @@ TEST(FeatureConversions, KeyframePositionsAndLocalMap) {
   keyframe.surfaces->push_back(p);
   p.x = 3.f;
   keyframe.surfaces->push_back(p);
-  map.update({keyframe}, Eigen::Vector3d::Zero(), 0);
+  map.update({keyframe}, Eigen::Vector3d::Zero());
   const Cloud surround = *cloud_from_ros(local_map_to_ros(map, header_at(1, "map")), "s");
   EXPECT_EQ(surround.size(), map.corners()->size() + map.surfaces()->size());
   EXPECT_GE(surround.size(), 2u);

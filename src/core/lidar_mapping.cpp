@@ -38,10 +38,11 @@ void LidarMapping::try_loop_closure(double stamp, MappingOutput& out) {
   const Eigen::Isometry3d newest_before = keyframes_[newest].pose;
   graph_.add_loop(*out.loop);
   graph_.optimize(keyframes_);
-  // The running pose moves with the newest keyframe; the local map is rebuilt from the
+  // The running pose moves with the newest keyframe; the local map is placed again from the
   // corrected keyframes.
-  pose_ = keyframes_[newest].pose * newest_before.inverse() * pose_;
-  ++map_version_;
+  const Eigen::Isometry3d correction = keyframes_[newest].pose * newest_before.inverse();
+  pose_ = correction * pose_;
+  local_map_.keyframes_moved(correction);
   ++loops_closed_;
 }
 
@@ -96,7 +97,7 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   out.match.pose = pose;
 
   if (params_.enabled && !keyframes_.empty()) {
-    local_map_.update(keyframes_, pose.translation(), map_version_);
+    local_map_.update(keyframes_, pose.translation());
     out.times.add("local_map", watch.lap_ms());
     const CloudPtr corners = voxel_filter(*features.less_sharp, params_.scan_corner_voxel);
     Cloud surface_points = *features.less_flat;

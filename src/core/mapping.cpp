@@ -160,10 +160,32 @@ Eigen::Matrix<double, 6, 6> normal_matrix(ceres::Problem& problem, double* rotat
 
 }  // namespace
 
+LocalMap::Placement::Placement(const MappingParams& params)
+    : corners(params.corner_voxel, kSearchRadius), surfaces(params.surface_voxel, kSearchRadius) {}
+
+void LocalMap::Placement::put_in(const Keyframe& keyframe) {
+  CloudPtr placed_corners = transform_cloud(*keyframe.corners, keyframe.pose);
+  CloudPtr placed_surfaces = transform_cloud(*keyframe.surfaces, keyframe.pose);
+  corners.add(*placed_corners);
+  surfaces.add(*placed_surfaces);
+  placed[keyframe.index] = {std::move(placed_corners), std::move(placed_surfaces)};
+}
+
+void LocalMap::Placement::take_out(int keyframe) {
+  const auto found = placed.find(keyframe);
+  corners.remove(*found->second.first);
+  surfaces.remove(*found->second.second);
+  placed.erase(found);
+}
+
+void LocalMap::Placement::clear() {
+  corners.clear();
+  surfaces.clear();
+  placed.clear();
+}
+
 LocalMap::LocalMap(const MappingParams& params)
-    : params_(params),
-      corner_map_(params.corner_voxel, kSearchRadius),
-      surface_map_(params.surface_voxel, kSearchRadius) {}
+    : params_(params), active_(params), replacement_(params) {}
 
 std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
                                   const Eigen::Vector3d& position) const {
@@ -181,40 +203,52 @@ std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
   return chosen;
 }
 
-bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position,
-                      int version) {
-  std::vector<int> chosen = select(keyframes, position);
-  if (version == version_ && chosen == selected_) return false;
-  if (version != version_) {
-    corner_map_.clear();
-    surface_map_.clear();
-    placed_.clear();
-    selected_.clear();
+bool LocalMap::follow(Placement& placement, const std::vector<Keyframe>& keyframes,
+                      const std::vector<int>& chosen, int most_new, bool* changed) {
+  std::vector<int> leaving;
+  for (const auto& entry : placement.placed) {
+    if (!std::binary_search(chosen.begin(), chosen.end(), entry.first))
+      leaving.push_back(entry.first);
   }
-  for (int index : selected_) {
-    if (!std::binary_search(chosen.begin(), chosen.end(), index)) take_out(index);
-  }
+  for (int index : leaving)
+    placement.take_out(index);
+  bool complete = true;
+  int added = 0;
   for (int index : chosen) {
-    if (!std::binary_search(selected_.begin(), selected_.end(), index)) put_in(keyframes[index]);
+    if (placement.holds(index)) continue;
+    if (added == most_new) {
+      complete = false;
+      break;
+    }
+    placement.put_in(keyframes[index]);
+    ++added;
   }
-  selected_ = std::move(chosen);
-  version_ = version;
+  *changed = !leaving.empty() || added > 0;
+  return complete;
+}
+
+bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position) {
+  const std::vector<int> chosen = select(keyframes, position);
+  bool changed = false;
+  if (!replacing_) {
+    follow(active_, keyframes, chosen, static_cast<int>(chosen.size()), &changed);
+    return changed;
+  }
+  // Placing every keyframe again at once would cost one scan tens of milliseconds.
+  constexpr int kReplacedPerUpdate = 2;
+  if (!follow(replacement_, keyframes, chosen, kReplacedPerUpdate, &changed)) return false;
+  std::swap(active_, replacement_);
+  replacement_.clear();
+  replacing_ = false;
+  to_placement_ = Eigen::Isometry3d::Identity();
   return true;
 }
 
-void LocalMap::put_in(const Keyframe& keyframe) {
-  Placed placed{transform_cloud(*keyframe.corners, keyframe.pose),
-                transform_cloud(*keyframe.surfaces, keyframe.pose)};
-  corner_map_.add(*placed.corners);
-  surface_map_.add(*placed.surfaces);
-  placed_[keyframe.index] = std::move(placed);
-}
-
-void LocalMap::take_out(int keyframe) {
-  const auto placed = placed_.find(keyframe);
-  corner_map_.remove(*placed->second.corners);
-  surface_map_.remove(*placed->second.surfaces);
-  placed_.erase(placed);
+void LocalMap::keyframes_moved(const Eigen::Isometry3d& correction) {
+  if (active_.placed.empty()) return;  // nothing placed with the old poses
+  to_placement_ = to_placement_ * correction.inverse();
+  replacement_.clear();
+  replacing_ = true;
 }
 
 ScanToMapMatcher::ScanToMapMatcher(const MappingParams& params) : params_(params) {}
@@ -225,8 +259,10 @@ MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfac
   MapMatchResult result;
   result.pose = guess;
   if (map.empty()) return result;
-  Eigen::Quaterniond rotation(guess.linear());
-  Eigen::Vector3d translation = guess.translation();
+  // Matched in the frame the map's points are in; the result goes back to the map frame.
+  const Eigen::Isometry3d placed_guess = map.to_placement() * guess;
+  Eigen::Quaterniond rotation(placed_guess.linear());
+  Eigen::Vector3d translation = placed_guess.translation();
   Eigen::Matrix<double, 6, 6> keep = Eigen::Matrix<double, 6, 6>::Identity();
   Correspondences matches;
   ceres::EigenQuaternionManifold quaternion_manifold;
@@ -255,7 +291,7 @@ MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfac
     problem.AddResidualBlock(&cost, nullptr, q, t);
     if (prior && prior->weight > 0.0) {
       prior_cost.reset(new ceres::AutoDiffCostFunction<DirectionPrior, 1, 3>(new DirectionPrior{
-          guess.linear() * prior->direction, guess.translation(), prior->weight}));
+          placed_guess.linear() * prior->direction, placed_guess.translation(), prior->weight}));
       problem.AddResidualBlock(prior_cost.get(), nullptr, t);
     }
     if (iteration == 0) {
@@ -293,8 +329,10 @@ MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfac
     if (iteration >= 1 && step.head<3>().norm() < 5e-5 && step.tail<3>().norm() < 1e-3) break;
   }
   if (result.matched) {
-    result.pose.linear() = rotation.toRotationMatrix();
-    result.pose.translation() = translation;
+    Eigen::Isometry3d placed_pose = Eigen::Isometry3d::Identity();
+    placed_pose.linear() = rotation.toRotationMatrix();
+    placed_pose.translation() = translation;
+    result.pose = map.to_placement().inverse() * placed_pose;
   }
   return result;
 }

@@ -69,7 +69,6 @@ class LidarMapping {
   ScanToMapMatcher matcher_;
   TransformFusion fusion_;
   std::vector<Keyframe> keyframes_;
-  int map_version_ = 0;
   int scans_ = 0;
   std::optional<Eigen::Isometry3d> last_odometry_pose_;
   std::optional<Eigen::Isometry3d> last_mapped_motion_;

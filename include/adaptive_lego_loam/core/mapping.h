@@ -20,32 +20,47 @@ namespace adaptive_lego_loam {
 class LocalMap {
  public:
   explicit LocalMap(const MappingParams& params);
-  // Updates from the keyframes near `position` when that set (or `version`, bumped when
-  // keyframe poses change) differs from the last update: keyframes that left the set are taken
-  // out, new ones put in (everything again after a version change). Returns whether it changed.
-  bool update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position, int version);
-  const VoxelMap& corner_map() const { return corner_map_; }
-  const VoxelMap& surface_map() const { return surface_map_; }
-  // The voxel centroids, made on each call (for display).
-  CloudPtr corners() const { return corner_map_.centroids(); }
-  CloudPtr surfaces() const { return surface_map_.centroids(); }
-  bool empty() const { return corner_map_.empty() && surface_map_.empty(); }
+  // Follows the keyframes near `position`: keyframes that left the chosen set are taken out, new
+  // ones put in. Returns whether the map changed.
+  bool update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position);
+  // Keyframe poses changed (a loop closed); `correction` takes the old map frame to the new one
+  // near the current position (the newest keyframe's change: new pose = correction * old). The
+  // keyframes are placed again from their new poses over the next updates, a few at a time, and
+  // until then queries go to the old placement through to_placement().
+  void keyframes_moved(const Eigen::Isometry3d& correction);
+  // From the map frame to the frame the map's points are in (identity but while placing again).
+  const Eigen::Isometry3d& to_placement() const { return to_placement_; }
+
+  const VoxelMap& corner_map() const { return active_.corners; }
+  const VoxelMap& surface_map() const { return active_.surfaces; }
+  // The voxel centroids in the frame of to_placement(), made on each call (for display).
+  CloudPtr corners() const { return active_.corners.centroids(); }
+  CloudPtr surfaces() const { return active_.surfaces.centroids(); }
+  bool empty() const { return active_.corners.empty() && active_.surfaces.empty(); }
 
  private:
-  // A keyframe's features as they were put in the map (to take them out again).
-  struct Placed {
-    CloudPtr corners, surfaces;
+  // Keyframes placed in voxel maps, each with its features as placed (to take them out again).
+  struct Placement {
+    Placement(const MappingParams& params);
+    void put_in(const Keyframe& keyframe);
+    void take_out(int keyframe);
+    bool holds(int keyframe) const { return placed.count(keyframe) > 0; }
+    void clear();
+
+    VoxelMap corners, surfaces;
+    std::map<int, std::pair<CloudPtr, CloudPtr>> placed;  // corners, surfaces in the map frame
   };
   std::vector<int> select(const std::vector<Keyframe>& keyframes,
                           const Eigen::Vector3d& position) const;
-  void put_in(const Keyframe& keyframe);
-  void take_out(int keyframe);
+  // Makes `placement` hold exactly `chosen`, putting in at most `most_new` keyframes; returns
+  // whether it then holds them all.
+  static bool follow(Placement& placement, const std::vector<Keyframe>& keyframes,
+                     const std::vector<int>& chosen, int most_new, bool* changed);
 
   MappingParams params_;
-  std::vector<int> selected_;
-  int version_ = -1;
-  VoxelMap corner_map_, surface_map_;
-  std::map<int, Placed> placed_;
+  Placement active_, replacement_;
+  bool replacing_ = false;
+  Eigen::Isometry3d to_placement_ = Eigen::Isometry3d::Identity();
 };
 
 struct MapMatchResult {
