@@ -82,7 +82,7 @@ struct PointKdTree::Index {
   // squared distance from the query to the current cell along it; their sum `cell_distance`
   // bounds every point of the cell from below.
   void search(uint32_t node_index, const float* query, float cell_distance, float* offsets,
-              NearestCandidates& found) const {
+              NearestCandidates<uint32_t>& found) const {
     const Node& node = nodes[node_index];
     if (node.axis == kLeaf) {
       for (uint32_t i = node.right_or_begin; i < node.end; ++i) {
@@ -126,7 +126,7 @@ int PointKdTree::nearest(const Eigen::Vector3f& query, int k, uint32_t* indices,
                          float* squared_distances, float max_squared_distance) const {
   if (!index_ || k <= 0) return 0;
   // Points must beat `worst` strictly: start just above the bound to include it.
-  NearestCandidates found{
+  NearestCandidates<uint32_t> found{
       k, 0, indices, squared_distances,
       std::nextafter(max_squared_distance, std::numeric_limits<float>::infinity())};
   float offsets[3] = {0.f, 0.f, 0.f};

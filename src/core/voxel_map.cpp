@@ -145,29 +145,30 @@ int VoxelMap::nearest(const Eigen::Vector3f& query, int k, Eigen::Vector3f* poin
                       float* squared_distances, float max_squared_distance) const {
   if (k <= 0 || empty()) return 0;
   const float bound = std::min(max_squared_distance, max_squared_radius_);
-  constexpr int kOnStack = 16;
-  uint32_t stack_ids[kOnStack];
-  std::vector<uint32_t> heap_ids(k > kOnStack ? k : 0);
-  uint32_t* voxel_ids = k > kOnStack ? heap_ids.data() : stack_ids;
-  NearestCandidates found{k, 0, voxel_ids, squared_distances,
-                          std::nextafter(bound, std::numeric_limits<float>::infinity())};
+  NearestCandidates<Eigen::Vector3f> found{
+      k, 0, points, squared_distances,
+      std::nextafter(bound, std::numeric_limits<float>::infinity())};
   // A cell is at least twice the radius wide, so the ball around the query lies in the 2 x 2 x 2
   // cells on the query's side of its cell's middle along each axis.
   int64_t first_cell[3];
   float gap_squared[3][2];  // per axis: the squared gap to the first and the second cell
+  int own[3];               // per axis: which of the two holds the query
   for (int a = 0; a < 3; ++a) {
     const int64_t cell = cell_of(voxel_index(query[a], inverse_leaf_));
     const double low = cell * cell_size_;
     const double into = query[a] - low;
     const bool upper_half = into >= 0.5 * cell_size_;
     first_cell[a] = upper_half ? cell : cell - 1;
+    own[a] = upper_half ? 0 : 1;
     const double gap = upper_half ? std::max(0.0, cell_size_ - into) : std::max(0.0, into);
     gap_squared[a][upper_half ? 0 : 1] = 0.f;
     gap_squared[a][upper_half ? 1 : 0] = static_cast<float>(gap * gap);
   }
-  for (int ix = 0; ix < 2; ++ix) {
-    for (int iy = 0; iy < 2; ++iy) {
-      for (int iz = 0; iz < 2; ++iz) {
+  // The query's own cell first: it usually holds the nearest points and tightens the bound.
+  for (int other_x = 0; other_x < 2; ++other_x) {
+    for (int other_y = 0; other_y < 2; ++other_y) {
+      for (int other_z = 0; other_z < 2; ++other_z) {
+        const int ix = own[0] ^ other_x, iy = own[1] ^ other_y, iz = own[2] ^ other_z;
         const float gap = gap_squared[0][ix] + gap_squared[1][iy] + gap_squared[2][iz];
         if (gap >= found.worst) continue;
         const uint32_t* cell_id = cell_ids_.find(
@@ -176,14 +177,10 @@ int VoxelMap::nearest(const Eigen::Vector3f& query, int k, Eigen::Vector3f* poin
         for (const Centroid& c : cells_[*cell_id - 1].centroids) {
           const float dx = query[0] - c.x, dy = query[1] - c.y, dz = query[2] - c.z;
           const float distance = dx * dx + dy * dy + dz * dz;
-          if (distance < found.worst) found.add(distance, c.voxel);
+          if (distance < found.worst) found.add(distance, Eigen::Vector3f(c.x, c.y, c.z));
         }
       }
     }
-  }
-  for (int i = 0; i < found.count; ++i) {
-    const Centroid& c = cells_[voxels_[voxel_ids[i]].cell].centroids[voxels_[voxel_ids[i]].slot];
-    points[i] = Eigen::Vector3f(c.x, c.y, c.z);
   }
   return found.count;
 }
