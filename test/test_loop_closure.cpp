@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <pcl/registration/icp.h>
 
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/loop_closure.h"
+#include "adaptive_lego_loam/core/voxel_filter.h"
 
 using namespace adaptive_lego_loam;
 using Poses = std::vector<Eigen::Isometry3d>;
@@ -132,6 +134,67 @@ struct OffsetCase {
 
 double rotation_deg(const Eigen::Isometry3d& pose) {
   return Eigen::AngleAxisd(pose.rotation()).angle() / kDeg;
+}
+
+bool same_bits(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return std::memcmp(a.matrix().data(), b.matrix().data(), 16 * sizeof(double)) == 0;
+}
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof(double)) == 0;
+}
+
+void expect_same_detection(const LoopDetection& a, const LoopDetection& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.current_index, b.current_index);
+  EXPECT_EQ(a.matched_index, b.matched_index);
+  EXPECT_EQ(a.icp_iterations, b.icp_iterations);
+  EXPECT_TRUE(same_bits(a.fitness, b.fitness)) << a.fitness << " vs " << b.fitness;
+  EXPECT_TRUE(same_bits(a.correction, b.correction));
+  EXPECT_TRUE(same_bits(a.relative_pose, b.relative_pose));
+}
+
+// A keyframe's three clouds in the map frame.
+Cloud placed(const Keyframe& keyframe) {
+  Cloud sensor_frame = *keyframe.corners;
+  sensor_frame += *keyframe.surfaces;
+  sensor_frame += *keyframe.outliers;
+  return *transform_cloud(sensor_frame, keyframe.pose);
+}
+
+// What detect_loop documents, with PCL's ICP run in one align() on its own KD-tree.
+LoopDetection pcl_one_shot(const std::vector<Keyframe>& keyframes, int current, int matched,
+                           const LoopClosureParams& params) {
+  const Cloud current_cloud = placed(keyframes[current]);
+  const std::size_t step =
+      (current_cloud.size() + params.icp_max_points - 1) / params.icp_max_points;
+  CloudPtr source(new Cloud);
+  for (std::size_t i = 0; i < current_cloud.size(); i += std::max<std::size_t>(step, 1))
+    source->push_back(current_cloud[i]);
+  Cloud map;
+  for (int i = std::max(0, matched - params.neighbourhood_keyframes);
+       i <= std::min(current, matched + params.neighbourhood_keyframes); ++i) {
+    if (i != current && keyframes[i].stamp <= keyframes[current].stamp - params.min_time_gap) {
+      map += placed(keyframes[i]);
+    }
+  }
+  pcl::IterativeClosestPoint<CloudPoint, CloudPoint> icp;
+  icp.setMaxCorrespondenceDistance(params.icp_max_correspondence_distance);
+  icp.setMaximumIterations(params.icp_max_iterations);
+  icp.setTransformationEpsilon(1e-6);
+  icp.setEuclideanFitnessEpsilon(1e-6);
+  icp.setRANSACIterations(0);
+  icp.setInputSource(source);
+  icp.setInputTarget(voxel_filter(map, params.voxel_size));
+  Cloud aligned;
+  icp.align(aligned);
+  LoopDetection loop;
+  loop.fitness = icp.getFitnessScore();
+  const Eigen::Matrix4d t = icp.getFinalTransformation().cast<double>();
+  loop.correction.linear() =
+      Eigen::Quaterniond(t.topLeftCorner<3, 3>()).normalized().toRotationMatrix();
+  loop.correction.translation() = t.topRightCorner<3, 1>();
+  return loop;
 }
 
 }  // namespace
@@ -292,4 +355,138 @@ TEST(LoopClosure, SameInputsGiveBitIdenticalResults) {
         std::memcmp(a[k].pose.matrix().data(), b[k].pose.matrix().data(), 16 * sizeof(double)), 0)
         << "keyframe " << k;
   }
+}
+
+// The job's ICP resumes one iteration at a time, from the cloud the last one left, on
+// PointKdTree: PCL's ICP in one align() on its own KD-tree gives the same fitness and
+// transformation, bit for bit (the accepted loop and the mismatched cloud).
+TEST(LoopClosure, SteppedIcpEqualsPclIcpInOneAlign) {
+  OffsetCase matching;
+  OffsetCase mismatched;
+  const std::vector<Keyframe> elsewhere =
+      keyframes_along(mismatched.truth, mismatched.estimates, 99);
+  mismatched.keyframes[39].corners = elsewhere[39].corners;
+  mismatched.keyframes[39].surfaces = elsewhere[39].surfaces;
+  mismatched.keyframes[39].outliers = elsewhere[39].outliers;
+  const LoopClosureParams params;
+  for (const OffsetCase* scene_case : {&matching, &mismatched}) {
+    const LoopDetection loop = detect_loop(scene_case->keyframes, 39, params);
+    const LoopDetection reference = pcl_one_shot(scene_case->keyframes, 39, 0, params);
+    std::printf("[ measured ] %s after %d ICP iterations, fitness %.6f (PCL in one align: %.6f)\n",
+                to_string(loop.status), loop.icp_iterations, loop.fitness, reference.fitness);
+    EXPECT_GT(loop.icp_iterations, 1);
+    EXPECT_TRUE(same_bits(loop.fitness, reference.fitness));
+    EXPECT_TRUE(same_bits(loop.correction, reference.correction));
+  }
+}
+
+// Any step sizes give detect_loop's detection bit for bit; a step places keyframes up to
+// map_points_per_scan points (at least one) and runs at most icp_iterations_per_scan iterations
+// (the fitness counting as one); the voxel filter and the KD-tree take a step each.
+TEST(LoopClosure, JobInStepsGivesTheOneShotDetection) {
+  const OffsetCase scene_case;
+  const LoopClosureParams params;
+  const LoopDetection one_shot = detect_loop(scene_case.keyframes, 39, params);
+  ASSERT_TRUE(one_shot.accepted());
+  const int map_keyframes = 10;  // 0-9: the only ones 30 s older than 39
+  for (const int iterations_per_step : {1, 2, 3, 7}) {
+    LoopClosureParams stepped = params;
+    stepped.map_points_per_scan = 1;
+    stepped.icp_iterations_per_scan = iterations_per_step;
+    LoopDetectionJob job(scene_case.keyframes, 39, stepped);
+    int steps = 0;
+    while (!job.step())
+      ++steps;
+    ++steps;
+    EXPECT_TRUE(job.step()) << "a finished job stays finished";
+    expect_same_detection(job.detection(), one_shot);
+    const int icp_pieces = one_shot.icp_iterations + 1;
+    EXPECT_EQ(steps,
+              map_keyframes + 2 + (icp_pieces + iterations_per_step - 1) / iterations_per_step)
+        << iterations_per_step << " ICP iterations a step";
+    EXPECT_GT(job.detection().time_ms, 0.0);
+  }
+}
+
+TEST(LoopClosure, JobWithoutCandidateOrPointsIsDoneAtOnce) {
+  OffsetCase scene_case;
+  LoopClosureParams params;
+  scene_case.keyframes[39].pose.translation() << -8.0, 1.0, 0.0;
+  LoopDetectionJob no_candidate(scene_case.keyframes, 39, params);
+  EXPECT_TRUE(no_candidate.done());
+  EXPECT_EQ(no_candidate.detection().status, LoopStatus::kNoCandidate);
+  EXPECT_TRUE(no_candidate.step());
+
+  OffsetCase empty;
+  empty.keyframes[39].corners.reset(new Cloud);
+  empty.keyframes[39].surfaces.reset(new Cloud);
+  empty.keyframes[39].outliers.reset(new Cloud);
+  LoopDetectionJob too_few(empty.keyframes, 39, params);
+  EXPECT_TRUE(too_few.done());
+  EXPECT_EQ(too_few.detection().status, LoopStatus::kTooFewPoints);
+  EXPECT_EQ(too_few.detection().matched_index, 0);
+  EXPECT_THROW(LoopDetectionJob(empty.keyframes, 40, params), std::out_of_range);
+}
+
+// The drifted square of KeyframeGraphClosesDriftedLoop, optimised one solver iteration a step
+// while two more keyframes arrive: the keyframes it covered end where KeyframeGraph::optimize
+// puts them, the two new ones keep their pose relative to the last of those, and the graph holds
+// the loop and the new poses.
+TEST(LoopClosure, LoopOptimizationInStepsWhileKeyframesArrive) {
+  const Poses truth = square_path();
+  Poses estimates{truth.front()};
+  for (std::size_t k = 1; k < truth.size(); ++k) {
+    Eigen::Isometry3d step = truth[k - 1].inverse() * truth[k];
+    step.linear() = step.linear() * planar(0, 0, 0.1).linear();
+    step.translation() *= 1.005;
+    estimates.push_back(estimates.back() * step);
+  }
+  const std::vector<Keyframe> drifted = keyframes_along(truth, estimates);
+  LoopClosureParams params;
+  params.graph_iterations_per_scan = 1;
+  const LoopDetection loop = detect_loop(drifted, 39, params);
+  ASSERT_TRUE(loop.accepted()) << to_string(loop.status);
+
+  std::vector<Keyframe> at_once = drifted;
+  KeyframeGraph at_once_graph(params);
+  for (const Keyframe& keyframe : at_once)
+    at_once_graph.add_keyframe(keyframe);
+  std::vector<Keyframe> stepped = at_once;
+  KeyframeGraph stepped_graph = at_once_graph;
+  at_once_graph.add_loop(loop);
+  const PoseGraphSummary summary = at_once_graph.optimize(at_once);
+
+  LoopOptimization optimization(stepped_graph, loop, params);
+  EXPECT_THROW(optimization.apply(stepped_graph, stepped), std::logic_error);
+  int steps = 0;
+  for (bool done = false; !done; ++steps) {
+    if (steps < 2) {
+      Keyframe arriving = stepped[static_cast<std::size_t>(steps)];  // any clouds will do
+      arriving.index = static_cast<int>(stepped.size());
+      arriving.pose = stepped.back().pose * planar(1.0, 0.0, 2.0);
+      stepped_graph.add_keyframe(arriving);
+      stepped.push_back(arriving);
+    }
+    done = optimization.step();
+  }
+  EXPECT_TRUE(optimization.step());
+  const Eigen::Isometry3d last_before = stepped[39].pose;
+  const Eigen::Isometry3d arrived_relative = last_before.inverse() * stepped[41].pose;
+  const Eigen::Isometry3d motion = optimization.apply(stepped_graph, stepped);
+  std::printf("[ measured ] one optimize(): %d iterations; in steps: %d steps\n",
+              summary.iterations, steps);
+  EXPECT_LE(steps, summary.iterations + 2);
+  for (int k = 0; k < 40; ++k) {
+    EXPECT_LT((stepped[k].pose.translation() - at_once[k].pose.translation()).norm(), 1e-5)
+        << "keyframe " << k;
+  }
+  EXPECT_TRUE((motion * last_before).isApprox(stepped[39].pose, 1e-12));
+  EXPECT_TRUE((stepped[39].pose.inverse() * stepped[41].pose).isApprox(arrived_relative, 1e-9));
+  const PoseGraph& graph = stepped_graph.graph();
+  ASSERT_EQ(graph.node_count(), 42);
+  for (int k = 0; k < 42; ++k)
+    EXPECT_TRUE(graph.pose(k).isApprox(stepped[k].pose, 1e-12)) << "node " << k;
+  EXPECT_EQ(graph.edges().back().kind, EdgeKind::kLoop);
+
+  EXPECT_THROW(LoopOptimization(stepped_graph, LoopDetection(), params), std::invalid_argument);
 }

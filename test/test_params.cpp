@@ -101,6 +101,9 @@ TEST(Params, LoopClosureSection) {
   EXPECT_EQ(shipped.loop_closure.neighbourhood_keyframes, 25);
   EXPECT_DOUBLE_EQ(shipped.loop_closure.fitness_threshold, 0.3);
   EXPECT_EQ(shipped.loop_closure.robust_loss, RobustLoss::kCauchy);
+  EXPECT_EQ(shipped.loop_closure.map_points_per_scan, 20000);
+  EXPECT_EQ(shipped.loop_closure.icp_iterations_per_scan, 2);
+  EXPECT_EQ(shipped.loop_closure.graph_iterations_per_scan, 1);
 
   const Config config = parse_config(std::string(kMinimal) +
                                          "loop_closure:\n  enabled: false\n  search_radius: 12\n"
@@ -120,6 +123,9 @@ TEST(Params, LoopClosureSection) {
       << negative_sigma;
   EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  icp_max_iterations: 0\n")
                 .find("loop_closure.icp_max_iterations"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  icp_iterations_per_scan: 0\n")
+                .find("loop_closure.icp_iterations_per_scan"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  robust_loss: tukey\n")
                 .find("cauchy, huber, none"),

@@ -164,6 +164,30 @@ TEST(PoseGraph, LoopEdgeRemovesDriftWithinCostBound) {
   EXPECT_LT(end_error, bound);
 }
 
+// An optimisation run one solver iteration a call, each resuming with the trust region the last
+// one left, reaches the optimum one call reaches (within the solver's tolerances) in about as
+// many iterations.
+TEST(PoseGraph, OptimisationResumedOneIterationACallReachesTheSameOptimum) {
+  const DriftCase drift;
+  PoseGraph whole = square_graph(drift.initial, drift.odometry, drift.true_loop);
+  const PoseGraphSummary at_once = whole.optimize();
+  PoseGraph resumed = square_graph(drift.initial, drift.odometry, drift.true_loop);
+  double radius = PoseGraphSummary::kInitialTrustRegionRadius;
+  int calls = 0;
+  for (bool converged = false; !converged && calls < PoseGraphOptions().max_iterations; ++calls) {
+    const PoseGraphSummary summary = resumed.optimize(1, radius);
+    EXPECT_LE(summary.iterations, 2) << "iteration 0 and one step";
+    radius = summary.trust_region_radius;
+    converged = summary.converged;
+  }
+  std::printf("[ measured ] one call: %d iterations; resumed: %d calls, cost %.6f vs %.6f\n",
+              at_once.iterations, calls, resumed.cost(), at_once.final_cost);
+  EXPECT_TRUE(at_once.converged);
+  EXPECT_LE(calls, at_once.iterations + 2);
+  EXPECT_NEAR(resumed.cost(), at_once.final_cost, 1e-6 * at_once.final_cost);
+  EXPECT_LT(max_position_change(resumed.poses(), whole.poses()), 1e-4);
+}
+
 // Odometry-only cost at `poses` as a distance: sqrt(2 F_odometry), in odometry sigmas.
 double odometry_deformation(const Poses& poses, const Poses& steps) {
   PoseGraph graph;

@@ -71,9 +71,10 @@ Drive drive(const Config& config, const std::vector<SimFrame>& frames) {
 
 TEST(SimOdometry, LoopTrajectoryRecoveredAndClosed) {
   // A 160 m urban loop in 20 s, and on past the start for 2.5 s: loops are looked for once a
-  // second, and only from past the start does the candidate's map (the first keyframes and those
-  // after them) cover what the scan sees. Loops are looked for 15 s back (LeGO-LOAM: 30 s) to
-  // keep the test short.
+  // second (an attempt runs a bounded piece a scan, kitti.yaml's for about 10 scans), and only
+  // from past the start does the candidate's map (the first keyframes and those after them)
+  // cover what the scan sees. Loops are looked for 15 s back (LeGO-LOAM: 30 s) to keep the test
+  // short.
   Config config = kitti_config();
   config.loop_closure.min_time_gap = 15.0;
   const auto [estimate, truth, loops] =

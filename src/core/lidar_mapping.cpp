@@ -26,24 +26,49 @@ LidarMapping::LidarMapping(const MappingParams& params, const LoopClosureParams&
       local_map_(params),
       matcher_(params) {}
 
-void LidarMapping::try_loop_closure(double stamp, MappingOutput& out) {
-  if (!loop_params_.enabled) return;
+void LidarMapping::start_loop_closure(double stamp) {
   const int newest = static_cast<int>(keyframes_.size()) - 1;
-  // The candidate search is cheap and runs at every keyframe; ICP at most once a period.
+  // The candidate search is cheap and runs at every keyframe; the rest at most once a period.
   if (find_loop_candidate(keyframes_, newest, loop_params_) < 0) return;
   if (stamp - last_loop_attempt_ < kLoopAttemptPeriod) return;
   last_loop_attempt_ = stamp;
-  out.loop = detect_loop(keyframes_, newest, loop_params_);
-  if (!out.loop->accepted()) return;
-  const Eigen::Isometry3d newest_before = keyframes_[newest].pose;
-  graph_.add_loop(*out.loop);
-  graph_.optimize(keyframes_);
+  loop_job_.emplace(keyframes_, newest, loop_params_);
+}
+
+std::optional<LoopDetection> LidarMapping::advance_loop_closure(double stamp, bool new_keyframe) {
+  if (!loop_params_.enabled) return std::nullopt;
+  if (new_keyframe && !loop_closure_running()) start_loop_closure(stamp);
+  if (loop_job_) {
+    if (!loop_job_->step()) return std::nullopt;
+    const LoopDetection detection = loop_job_->detection();
+    loop_job_.reset();
+    if (!detection.accepted()) return detection;
+    // The pose graph's first step waits for the next scan.
+    loop_optimization_.emplace(graph_, detection, loop_params_);
+    return std::nullopt;
+  }
+  if (!loop_optimization_ || !loop_optimization_->step()) return std::nullopt;
+  const LoopDetection loop = loop_optimization_->loop();
+  close_loop();
+  return loop;
+}
+
+void LidarMapping::close_loop() {
+  const Eigen::Isometry3d motion = loop_optimization_->apply(graph_, keyframes_);
+  loop_optimization_.reset();
   // The running pose moves with the newest keyframe; the local map is placed again from the
   // corrected keyframes.
-  const Eigen::Isometry3d correction = keyframes_[newest].pose * newest_before.inverse();
-  pose_ = correction * pose_;
-  local_map_.keyframes_moved(correction);
+  pose_ = motion * pose_;
+  local_map_.keyframes_moved(motion);
   ++loops_closed_;
+}
+
+std::optional<LoopDetection> LidarMapping::finish_loop_closure() {
+  std::optional<LoopDetection> finished;
+  while (loop_closure_running() && !finished) {
+    finished = advance_loop_closure(0.0, false);
+  }
+  return finished;
 }
 
 bool LidarMapping::motion_is_plausible(const Eigen::Isometry3d& motion) const {
@@ -114,12 +139,14 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   out.pose = pose_;
   // A distorted first sweep would bend the map for as long as it stays in it.
   out.keyframe = !features.raw_sweep && needs_keyframe();
-  out.loop.reset();
   if (out.keyframe) {
     add_keyframe(features, stamp);
     out.times.add("keyframes", watch.lap_ms());
-    try_loop_closure(stamp, out);
-    out.times.add("loop_closure", watch.lap_ms());
+  }
+  const bool loop_work = out.keyframe || loop_closure_running();
+  out.loop = advance_loop_closure(stamp, out.keyframe);
+  if (loop_work) out.times.add("loop_closure", watch.lap_ms());
+  if (out.loop && out.loop->accepted()) {
     out.pose = pose_;
     fusion_.update_mapping(odometry_pose, pose_);
   }

@@ -185,6 +185,10 @@ double PoseGraph::cost() const {
 }
 
 PoseGraphSummary PoseGraph::optimize() {
+  return optimize(options_.max_iterations, PoseGraphSummary::kInitialTrustRegionRadius);
+}
+
+PoseGraphSummary PoseGraph::optimize(int max_iterations, double trust_region_radius) {
   const Stopwatch stopwatch;
   PoseGraphSummary summary;
   if (edges_.empty()) {
@@ -199,7 +203,8 @@ PoseGraphSummary PoseGraph::optimize() {
   solver_options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   solver_options.num_threads = 1;
-  solver_options.max_num_iterations = options_.max_iterations;
+  solver_options.max_num_iterations = max_iterations;
+  solver_options.initial_trust_region_radius = trust_region_radius;
   solver_options.function_tolerance = 1e-10;
   solver_options.parameter_tolerance = 1e-10;
   solver_options.logging_type = ceres::SILENT;
@@ -211,6 +216,9 @@ PoseGraphSummary PoseGraph::optimize() {
   summary.initial_cost = ceres_summary.initial_cost;
   summary.final_cost = ceres_summary.final_cost;
   summary.iterations = ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps;
+  if (!ceres_summary.iterations.empty()) {
+    summary.trust_region_radius = ceres_summary.iterations.back().trust_region_radius;
+  }
   summary.time_ms = stopwatch.elapsed_ms();
   return summary;
 }

@@ -119,11 +119,23 @@ class MapOptimization {
     ROS_DEBUG("map_optimization: scan at %.3f: %s%s", group.stamp.toSec(),
               ros_bridge::format_stage_times(out_.times).c_str(),
               out_.keyframe ? " (keyframe)" : "");
+    if (out_.loop) log_loop(*out_.loop);
     summary_.add(out_.times);
     if (const auto line = summary_.report()) ROS_INFO("%s", line->c_str());
   }
 
   std::string topic(Slot slot) const { return subscriptions_[slot].getTopic(); }
+
+  // An attempt is reported on the scan it finished, some scans after its keyframe.
+  static void log_loop(const LoopDetection& loop) {
+    if (loop.accepted()) {
+      ROS_INFO("map_optimization: loop closed: keyframe %d to %d (ICP fitness %.3f m^2)",
+               loop.current_index, loop.matched_index, loop.fitness);
+    } else {
+      ROS_DEBUG("map_optimization: no loop at keyframe %d: %s (fitness %.3f m^2)",
+                loop.current_index, to_string(loop.status), loop.fitness);
+    }
+  }
 
   void publish(const ros::Time& stamp) {
     std_msgs::Header map_header;

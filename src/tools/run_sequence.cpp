@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 
 #include "adaptive_lego_loam/core/pipeline.h"
 #include "adaptive_lego_loam/io/io_error.h"
@@ -152,6 +153,17 @@ int run(const Options& options) {
     failure = e.what();  // keep what was done so far
   }
   progress.finish();
+  // A loop closure still running at the end of the input finishes now, outside every scan's
+  // time: the online mapping would finish it over the next scans.
+  nlohmann::json final_loop_closure;
+  if (failure.empty()) {
+    const Stopwatch stopwatch;
+    if (const std::optional<LoopDetection> loop = pipeline.finish_loop_closure()) {
+      final_loop_closure = {{"status", to_string(loop->status)},
+                            {"fitness", loop->fitness},
+                            {"ms", stopwatch.elapsed_ms()}};
+    }
+  }
   const double wall_s = wall.elapsed_ms() / 1000.0;
   if (frames > 0) write_poses(options, pipeline, outputs);
 
@@ -165,6 +177,7 @@ int run(const Options& options) {
   summary["scans_without_valid_points"] = empty_scans;
   summary["keyframes"] = pipeline.keyframes().size();
   summary["loops_closed"] = pipeline.mapping().loops_closed();
+  if (!final_loop_closure.is_null()) summary["loop_closure_after_last_scan"] = final_loop_closure;
   summary["motion_gated_scans"] = motion_gated_scans;
   summary["wall_time_s"] = wall_s;
   summary["frames_per_second"] = wall_s > 0 ? frames / wall_s : 0.0;

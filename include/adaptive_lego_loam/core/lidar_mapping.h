@@ -33,7 +33,9 @@ struct MappingOutput {
   MapMatchResult match;
   bool keyframe = false;
   bool motion_gated = false;  // the odometry's motion was implausible: the guess kept the velocity
-  std::optional<LoopDetection> loop;  // when a loop closure was attempted on this scan
+  // When a loop-closure attempt finished on this scan (it started at an earlier keyframe and ran
+  // a bounded piece a scan since; an accepted loop has moved the poses on this scan).
+  std::optional<LoopDetection> loop;
   StageTimes times;
 };
 
@@ -49,6 +51,10 @@ class LidarMapping {
   const LocalMap& local_map() const { return local_map_; }
   const TransformFusion& fusion() const { return fusion_; }
   int loops_closed() const { return loops_closed_; }
+  bool loop_closure_running() const { return loop_job_ || loop_optimization_; }
+  // Finishes the loop-closure attempt in progress at once (at the end of the input, where no scan
+  // is left to spread it over); returns it, if there was one.
+  std::optional<LoopDetection> finish_loop_closure();
   // Every scan's pose, re-derived from its keyframe so that later keyframe corrections apply.
   std::vector<Eigen::Isometry3d> trajectory() const;
 
@@ -56,13 +62,20 @@ class LidarMapping {
   bool motion_is_plausible(const Eigen::Isometry3d& motion) const;
   bool needs_keyframe() const;
   void add_keyframe(const FeatureSet& features, double stamp);
-  // With a new keyframe that has a loop candidate, ICP at most once a second of data (LeGO-LOAM's
-  // rate).
-  void try_loop_closure(double stamp, MappingOutput& out);
+  // A loop-closure attempt starts with a new keyframe that has a loop candidate, at most once a
+  // second of data (LeGO-LOAM's rate) and one at a time; every scan then runs one bounded step of
+  // it: the detection's, then, when accepted, the pose graph's. Returns the attempt on the scan
+  // it finished.
+  std::optional<LoopDetection> advance_loop_closure(double stamp, bool new_keyframe);
+  void start_loop_closure(double stamp);
+  // Applies the finished optimisation: keyframes, the running pose and the local map move.
+  void close_loop();
 
   MappingParams params_;
   LoopClosureParams loop_params_;
   KeyframeGraph graph_;
+  std::optional<LoopDetectionJob> loop_job_;
+  std::optional<LoopOptimization> loop_optimization_;
   double last_loop_attempt_ = -1e18;
   int loops_closed_ = 0;
   LocalMap local_map_;

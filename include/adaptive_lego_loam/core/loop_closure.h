@@ -10,9 +10,14 @@
 //     if (loop.accepted()) { graph.add_loop(loop); graph.optimize(keyframes); }
 // optimize() rewrites every keyframe pose. The mapping's running pose estimate should then be
 // moved with the newest keyframe: T <- T_newest_after * T_newest_before^-1 * T.
+//
+// A mapping that must bound its time per scan spreads the same work over the following scans:
+// a LoopDetectionJob (one step() a scan) gives the detection, then a LoopOptimization (one step()
+// a scan) the corrected poses, while keyframes keep being added.
 
 #include <Eigen/Geometry>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "adaptive_lego_loam/core/keyframe.h"
@@ -36,6 +41,7 @@ struct LoopDetection {
   int current_index = -1;
   int matched_index = -1;                                    // the candidate, once one was found
   double fitness = std::numeric_limits<double>::infinity();  // m^2, once ICP ran
+  int icp_iterations = 0;
   // ICP's map-frame correction of the current keyframe: corrected pose = correction * pose.
   Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
   // T_matched^-1 * corrected T_current: the loop edge's measurement (when accepted).
@@ -60,6 +66,42 @@ int find_loop_candidate(const std::vector<Keyframe>& keyframes, int current_inde
 LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
                           const LoopClosureParams& params);
 
+// detect_loop in bounded steps: the candidate's map a few keyframes at a time
+// (params.map_points_per_scan), its voxel filter, its KD-tree, then params.icp_iterations_per_scan
+// ICP iterations a step, the fitness taking the place of the last. Any step sizes give
+// detect_loop's detection bit for bit: ICP resumes exactly where it stopped (an iteration at a
+// time, from the cloud the last one left). The keyframes are read when the job is made: their
+// poses as they are then (their clouds are shared, not copied).
+class LoopDetectionJob {
+ public:
+  // Finds the candidate and samples the current keyframe's cloud; throws std::out_of_range for a
+  // bad current_index. Already done when there is nothing to align.
+  LoopDetectionJob(const std::vector<Keyframe>& keyframes, int current_index,
+                   const LoopClosureParams& params);
+  ~LoopDetectionJob();
+  LoopDetectionJob(LoopDetectionJob&&) noexcept;
+  LoopDetectionJob& operator=(LoopDetectionJob&&) noexcept;
+
+  // Does the next piece of the work; true once the detection is final (then does nothing).
+  bool step();
+  bool done() const;
+  // Final once done(); time_ms adds up the time of the constructor and every step.
+  const LoopDetection& detection() const { return detection_; }
+
+ private:
+  struct Work;
+  void add_to_map();
+  void filter_map();
+  void prepare_icp();
+  void iterate_icp();
+  void conclude(double fitness, const Eigen::Matrix4f& transformation);
+  void finish(LoopStatus status);
+
+  LoopClosureParams params_;
+  LoopDetection detection_;
+  std::unique_ptr<Work> work_;  // null once done
+};
+
 // A pose graph kept alongside the keyframe list: node i is keyframe i.
 class KeyframeGraph {
  public:
@@ -72,6 +114,10 @@ class KeyframeGraph {
   void add_loop(const LoopDetection& loop);
   // Optimises and writes the poses back into keyframes (whose size must equal the node count).
   PoseGraphSummary optimize(std::vector<Keyframe>& keyframes);
+  // Optimises the nodes alone, resumably (see PoseGraph::optimize).
+  PoseGraphSummary optimize_nodes(int max_iterations, double trust_region_radius);
+  // Sets every node's pose from its keyframe (sizes must match).
+  void set_poses(const std::vector<Keyframe>& keyframes);
 
   const PoseGraph& graph() const { return graph_; }
 
@@ -79,6 +125,36 @@ class KeyframeGraph {
   Information6 odometry_information_;
   Information6 loop_information_;
   PoseGraph graph_;
+};
+
+// add_loop and optimize in bounded steps, for a mapping that keeps adding keyframes meanwhile: a
+// copy of the graph with the loop is optimised params.graph_iterations_per_scan solver iterations
+// a step, each resuming where the last stopped, until it converges or has taken the pose graph's
+// iteration limit (PoseGraphOptions::max_iterations).
+class LoopOptimization {
+ public:
+  // `loop` must be accepted (std::invalid_argument otherwise).
+  LoopOptimization(const KeyframeGraph& graph, const LoopDetection& loop,
+                   const LoopClosureParams& params);
+
+  // Runs the next iterations; true once finished (then does nothing).
+  bool step();
+  bool done() const { return done_; }
+  const LoopDetection& loop() const { return loop_; }
+
+  // Once done (std::logic_error before): adds the loop to `graph` and moves the keyframes the
+  // optimisation covered to its poses and those added since rigidly with the last of them, the
+  // graph's nodes with them. Returns that rigid motion (map frame: new pose = motion * old pose).
+  Eigen::Isometry3d apply(KeyframeGraph& graph, std::vector<Keyframe>& keyframes) const;
+
+ private:
+  LoopDetection loop_;
+  KeyframeGraph optimized_;
+  int iterations_per_step_;
+  int max_iterations_;
+  int iterations_ = 0;
+  double trust_region_radius_ = PoseGraphSummary::kInitialTrustRegionRadius;
+  bool done_ = false;
 };
 
 }  // namespace adaptive_lego_loam

@@ -159,6 +159,12 @@ struct LoopClosureParams {
   int icp_max_iterations = 30;
   // ICP aligns every n-th point of the newest keyframe, at most this many: bounds its time.
   int icp_max_points = 2000;
+  // A loop closure is spread over the scans from its keyframe on, so that no scan pays for all of
+  // it; each scan does the next of these pieces (or the voxel filter, or the KD-tree). The
+  // detection does not depend on their size.
+  int map_points_per_scan = 20000;    // keyframe points placed into the candidate's map
+  int icp_iterations_per_scan = 2;    // ICP iterations (the final fitness counts as one)
+  int graph_iterations_per_scan = 1;  // pose-graph solver iterations, once the loop is accepted
   // Pose-graph weights (1-sigma errors): of the odometry between consecutive keyframes and of a
   // loop measured by ICP.
   double odometry_sigma_translation = 0.05;  // m

@@ -43,6 +43,8 @@ class Pipeline {
  public:
   explicit Pipeline(const Config& config);
   const FrameResult& process(const Scan& scan);
+  // At the end of the input: finishes a loop closure still in progress (see LidarMapping).
+  std::optional<LoopDetection> finish_loop_closure() { return mapping_.finish_loop_closure(); }
 
   const Config& config() const { return config_; }
   const AmbientFilterResult& filter_result() const { return filtered_; }

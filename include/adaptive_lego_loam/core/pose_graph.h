@@ -57,6 +57,10 @@ struct PoseGraphSummary {
   double final_cost = 0.0;
   int iterations = 0;  // solver steps taken, successful or not
   double time_ms = 0.0;
+  // Levenberg-Marquardt's trust-region radius at the end: a later optimize() resumes with it.
+  double trust_region_radius = kInitialTrustRegionRadius;
+
+  static constexpr double kInitialTrustRegionRadius = 1e4;  // Ceres' default
 };
 
 class PoseGraph {
@@ -69,6 +73,7 @@ class PoseGraph {
   // matrix is not symmetric positive definite.
   void add_edge(const PoseGraphEdge& edge);
 
+  const PoseGraphOptions& options() const { return options_; }
   int node_count() const { return static_cast<int>(nodes_.size()); }
   const std::vector<PoseGraphEdge>& edges() const { return edges_; }
   Eigen::Isometry3d pose(int node) const;
@@ -80,6 +85,10 @@ class PoseGraph {
   // The cost optimize() minimises, at the current poses.
   double cost() const;
   PoseGraphSummary optimize();
+  // At most max_iterations solver steps, starting from this trust-region radius: a long
+  // optimisation run in short calls, each starting with the previous call's
+  // summary.trust_region_radius, takes nearly the steps one call would.
+  PoseGraphSummary optimize(int max_iterations, double trust_region_radius);
 
  private:
   // A pose as Ceres parameter blocks: unit quaternion (x, y, z, w, Eigen's storage order) and
