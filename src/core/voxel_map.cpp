@@ -28,76 +28,79 @@ int64_t VoxelMap::cell_of(int64_t voxel_index) const {
   return floor_divide(voxel_index, voxels_per_cell_);
 }
 
+uint64_t VoxelMap::key_of(const CloudPoint& p) const {
+  return pack_voxel_key(voxel_index(p.x, inverse_leaf_), voxel_index(p.y, inverse_leaf_),
+                        voxel_index(p.z, inverse_leaf_));
+}
+
+template <class Visit>
+void VoxelMap::for_each_key(const Cloud& points, Visit&& visit) {
+  // The table is far larger than the caches: a slot asked for a few points ahead is there in time.
+  constexpr std::size_t kAhead = 8;
+  std::vector<uint64_t> keys(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    keys[i] = key_of(points[i]);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (i + kAhead < points.size()) voxels_.prefetch(keys[i + kAhead]);
+    visit(points[i], keys[i]);
+  }
+}
+
 void VoxelMap::add(const Cloud& points) {
-  for (const CloudPoint& p : points)
-    add_point(p);
+  for_each_key(points, [this](const CloudPoint& p, uint64_t key) { add_point(p, key); });
 }
 
 void VoxelMap::remove(const Cloud& points) {
-  for (const CloudPoint& p : points)
-    remove_point(p);
+  for_each_key(points, [this](const CloudPoint& p, uint64_t key) { remove_point(p, key); });
 }
 
 void VoxelMap::clear() {
-  voxel_ids_.clear();
-  cell_ids_.clear();
   voxels_.clear();
-  free_voxels_.clear();
+  cell_ids_.clear();
   cells_.clear();
   free_cells_.clear();
 }
 
-void VoxelMap::add_point(const CloudPoint& p) {
-  const int64_t x = voxel_index(p.x, inverse_leaf_), y = voxel_index(p.y, inverse_leaf_),
-                z = voxel_index(p.z, inverse_leaf_);
-  const uint64_t key = pack_voxel_key(x, y, z);
-  uint32_t id = 0;
-  if (const uint32_t* found = voxel_ids_.find(key)) {
-    id = *found - 1;
-  } else {
-    id = new_voxel(key, x, y, z);
-  }
-  Voxel& voxel = voxels_[id];
+void VoxelMap::add_point(const CloudPoint& p, uint64_t key) {
+  bool inserted = false;
+  Voxel& voxel = voxels_.find_or_insert(key, &inserted);
+  if (inserted) attach(key, voxel);
   voxel.sum[0] += p.x;
   voxel.sum[1] += p.y;
   voxel.sum[2] += p.z;
   voxel.sum[3] += p.intensity;
   ++voxel.count;
-  update_centroid(id);
+  cells_[voxel.cell].centroids[voxel.slot] =
+      Eigen::Vector3f(static_cast<float>(voxel.sum[0] / voxel.count),
+                      static_cast<float>(voxel.sum[1] / voxel.count),
+                      static_cast<float>(voxel.sum[2] / voxel.count));
 }
 
-void VoxelMap::remove_point(const CloudPoint& p) {
-  const uint64_t key =
-      pack_voxel_key(voxel_index(p.x, inverse_leaf_), voxel_index(p.y, inverse_leaf_),
-                     voxel_index(p.z, inverse_leaf_));
-  const uint32_t* found = voxel_ids_.find(key);
-  if (!found) return;
-  const uint32_t id = *found - 1;
-  Voxel& voxel = voxels_[id];
-  voxel.sum[0] -= p.x;
-  voxel.sum[1] -= p.y;
-  voxel.sum[2] -= p.z;
-  voxel.sum[3] -= p.intensity;
-  if (--voxel.count == 0) {
-    delete_voxel(id);
-  } else {
-    update_centroid(id);
+void VoxelMap::remove_point(const CloudPoint& p, uint64_t key) {
+  Voxel* voxel = voxels_.find(key);
+  if (!voxel) return;
+  voxel->sum[0] -= p.x;
+  voxel->sum[1] -= p.y;
+  voxel->sum[2] -= p.z;
+  voxel->sum[3] -= p.intensity;
+  if (--voxel->count == 0) {
+    detach(*voxel);
+    voxels_.erase(key);
+    return;
   }
+  cells_[voxel->cell].centroids[voxel->slot] =
+      Eigen::Vector3f(static_cast<float>(voxel->sum[0] / voxel->count),
+                      static_cast<float>(voxel->sum[1] / voxel->count),
+                      static_cast<float>(voxel->sum[2] / voxel->count));
 }
 
-uint32_t VoxelMap::new_voxel(uint64_t key, int64_t x, int64_t y, int64_t z) {
-  uint32_t id;
-  if (free_voxels_.empty()) {
-    id = static_cast<uint32_t>(voxels_.size());
-    voxels_.emplace_back();
-  } else {
-    id = free_voxels_.back();
-    free_voxels_.pop_back();
-    voxels_[id] = Voxel();
-  }
-  voxel_ids_.find_or_insert(key) = id + 1;
-
-  const uint64_t cell_key = pack_voxel_key(cell_of(x), cell_of(y), cell_of(z));
+// Gives a new voxel a slot in its cell (and the cell a place in cells_ when it is new).
+void VoxelMap::attach(uint64_t key, Voxel& voxel) {
+  auto unpack = [](uint64_t packed, int shift) {
+    return static_cast<int64_t>((packed >> shift) & 0x1FFFFF) - (1 << 20);
+  };
+  const uint64_t cell_key =
+      pack_voxel_key(cell_of(unpack(key, 0)), cell_of(unpack(key, 21)), cell_of(unpack(key, 42)));
   uint32_t& cell_slot = cell_ids_.find_or_insert(cell_key);
   if (cell_slot == 0) {
     if (free_cells_.empty()) {
@@ -109,36 +112,26 @@ uint32_t VoxelMap::new_voxel(uint64_t key, int64_t x, int64_t y, int64_t z) {
     }
     cells_[cell_slot - 1].key = cell_key;
   }
-  Voxel& voxel = voxels_[id];
-  voxel.key = key;
   voxel.cell = cell_slot - 1;
   Cell& cell = cells_[voxel.cell];
   voxel.slot = static_cast<uint32_t>(cell.centroids.size());
-  cell.centroids.push_back({0.f, 0.f, 0.f, id});
-  return id;
+  cell.centroids.emplace_back(0.f, 0.f, 0.f);
+  cell.voxel_keys.push_back(key);
 }
 
-void VoxelMap::delete_voxel(uint32_t id) {
-  const Voxel& voxel = voxels_[id];
+// Frees an emptied voxel's slot: the cell's last voxel takes it.
+void VoxelMap::detach(const Voxel& voxel) {
   Cell& cell = cells_[voxel.cell];
-  // The cell's last centroid takes the freed slot.
+  const uint64_t moved_key = cell.voxel_keys.back();
   cell.centroids[voxel.slot] = cell.centroids.back();
-  voxels_[cell.centroids[voxel.slot].voxel].slot = voxel.slot;
+  cell.voxel_keys[voxel.slot] = moved_key;
+  voxels_.find(moved_key)->slot = voxel.slot;
   cell.centroids.pop_back();
+  cell.voxel_keys.pop_back();
   if (cell.centroids.empty()) {
     cell_ids_.erase(cell.key);
     free_cells_.push_back(voxel.cell);
   }
-  voxel_ids_.erase(voxel.key);
-  free_voxels_.push_back(id);
-}
-
-void VoxelMap::update_centroid(uint32_t id) {
-  const Voxel& voxel = voxels_[id];
-  Centroid& centroid = cells_[voxel.cell].centroids[voxel.slot];
-  centroid.x = static_cast<float>(voxel.sum[0] / voxel.count);
-  centroid.y = static_cast<float>(voxel.sum[1] / voxel.count);
-  centroid.z = static_cast<float>(voxel.sum[2] / voxel.count);
 }
 
 int VoxelMap::nearest(const Eigen::Vector3f& query, int k, Eigen::Vector3f* points,
@@ -174,10 +167,10 @@ int VoxelMap::nearest(const Eigen::Vector3f& query, int k, Eigen::Vector3f* poin
         const uint32_t* cell_id = cell_ids_.find(
             pack_voxel_key(first_cell[0] + ix, first_cell[1] + iy, first_cell[2] + iz));
         if (!cell_id) continue;
-        for (const Centroid& c : cells_[*cell_id - 1].centroids) {
-          const float dx = query[0] - c.x, dy = query[1] - c.y, dz = query[2] - c.z;
+        for (const Eigen::Vector3f& c : cells_[*cell_id - 1].centroids) {
+          const float dx = query[0] - c[0], dy = query[1] - c[1], dz = query[2] - c[2];
           const float distance = dx * dx + dy * dy + dz * dz;
-          if (distance < found.worst) found.add(distance, Eigen::Vector3f(c.x, c.y, c.z));
+          if (distance < found.worst) found.add(distance, c);
         }
       }
     }
@@ -189,12 +182,10 @@ CloudPtr VoxelMap::centroids() const {
   CloudPtr out(new Cloud);
   out->reserve(size());
   for (const Cell& cell : cells_) {
-    for (const Centroid& c : cell.centroids) {
-      const Voxel& voxel = voxels_[c.voxel];
+    for (std::size_t slot = 0; slot < cell.centroids.size(); ++slot) {
+      const Voxel& voxel = *voxels_.find(cell.voxel_keys[slot]);
       CloudPoint p;
-      p.x = c.x;
-      p.y = c.y;
-      p.z = c.z;
+      p.getVector3fMap() = cell.centroids[slot];
       p.intensity = static_cast<float>(voxel.sum[3] / voxel.count);
       out->push_back(p);
     }

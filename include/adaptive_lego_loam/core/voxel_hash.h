@@ -75,6 +75,11 @@ class VoxelHashTable {
     }
   }
 
+  // Starts loading the key's home slot into the cache (for a lookup soon after).
+  void prefetch(uint64_t key) const {
+    if (!slots_.empty()) __builtin_prefetch(&slots_[home(key)]);
+  }
+
   void clear() {
     slots_.clear();
     used_ = 0;

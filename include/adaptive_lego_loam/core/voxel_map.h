@@ -23,7 +23,7 @@ class VoxelMap {
   // `points` must have been added before, unchanged.
   void remove(const Cloud& points);
   void clear();
-  std::size_t size() const { return voxels_.size() - free_voxels_.size(); }
+  std::size_t size() const { return voxels_.size(); }
   bool empty() const { return size() == 0; }
 
   // Up to k voxel centroids nearest to `query` within sqrt(max_squared_distance) (inclusive, and
@@ -36,38 +36,37 @@ class VoxelMap {
   CloudPtr centroids() const;
 
  private:
+  // A voxel's sums live in the hash table itself (one memory access per point added or removed);
+  // its centroid in its cell, where queries scan it.
   struct Voxel {
     double sum[4] = {0.0, 0.0, 0.0, 0.0};  // x, y, z, intensity
     int count = 0;
-    uint64_t key = 0;
     uint32_t cell = 0;
     uint32_t slot = 0;  // in the cell's centroids
   };
-  // A cell's voxels as packed centroids (x, y, z, voxel id), scanned by queries.
-  struct Centroid {
-    float x, y, z;
-    uint32_t voxel;
-  };
   struct Cell {
     uint64_t key = 0;
-    std::vector<Centroid> centroids;
+    std::vector<Eigen::Vector3f> centroids;
+    std::vector<uint64_t> voxel_keys;  // of the same slots
   };
 
-  void add_point(const CloudPoint& p);
-  void remove_point(const CloudPoint& p);
-  uint32_t new_voxel(uint64_t key, int64_t x, int64_t y, int64_t z);
-  void delete_voxel(uint32_t id);
-  void update_centroid(uint32_t id);
+  // `visit(point, key)` for every point, the hash slot of a later point already on its way from
+  // memory.
+  template <class Visit>
+  void for_each_key(const Cloud& points, Visit&& visit);
+  void add_point(const CloudPoint& p, uint64_t key);
+  void remove_point(const CloudPoint& p, uint64_t key);
+  void attach(uint64_t key, Voxel& voxel);
+  void detach(const Voxel& voxel);
+  uint64_t key_of(const CloudPoint& p) const;
   int64_t cell_of(int64_t voxel_index) const;
 
   double leaf_, inverse_leaf_;
   int64_t voxels_per_cell_;  // along each axis
   double cell_size_;
   float max_squared_radius_;
-  VoxelHashTable<uint32_t> voxel_ids_;  // voxel key -> id + 1 (0: none)
-  VoxelHashTable<uint32_t> cell_ids_;   // cell key -> id + 1
-  std::vector<Voxel> voxels_;
-  std::vector<uint32_t> free_voxels_;
+  VoxelHashTable<Voxel> voxels_;
+  VoxelHashTable<uint32_t> cell_ids_;  // cell key -> index in cells_ + 1
   std::vector<Cell> cells_;
   std::vector<uint32_t> free_cells_;
 };
