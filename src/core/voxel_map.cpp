@@ -61,6 +61,11 @@ void VoxelMap::clear() {
   free_cells_.clear();
 }
 
+void VoxelMap::reserve(std::size_t voxels) {
+  voxels_.reserve(voxels);
+  cell_ids_.reserve(voxels / 8);
+}
+
 void VoxelMap::add_point(const CloudPoint& p, uint64_t key) {
   bool inserted = false;
   Voxel& voxel = voxels_.find_or_insert(key, &inserted);

@@ -80,9 +80,18 @@ class VoxelHashTable {
     if (!slots_.empty()) __builtin_prefetch(&slots_[home(key)]);
   }
 
+  // Empties the table, keeping its size (a table used again soon need not grow again).
   void clear() {
-    slots_.clear();
+    std::fill(slots_.begin(), slots_.end(), Slot());
     used_ = 0;
+  }
+
+  // Room for `count` entries without growing (growing re-inserts every entry at once).
+  void reserve(std::size_t count) {
+    std::size_t slot_count = 1024;
+    while (slot_count < 2 * count)
+      slot_count *= 2;
+    if (slot_count > slots_.size()) resize(slot_count);
   }
   std::size_t size() const { return used_; }
 
@@ -106,8 +115,10 @@ class VoxelHashTable {
     return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
   }
 
-  void grow() {
-    std::vector<Slot> old(std::max<std::size_t>(1024, 2 * slots_.size()));
+  void grow() { resize(std::max<std::size_t>(1024, 2 * slots_.size())); }
+
+  void resize(std::size_t slot_count) {
+    std::vector<Slot> old(slot_count);
     old.swap(slots_);
     used_ = 0;
     shift_ = 64;

@@ -22,7 +22,9 @@ class VoxelMap {
   void add(const Cloud& points);
   // `points` must have been added before, unchanged.
   void remove(const Cloud& points);
-  void clear();
+  void clear();  // keeps the memory
+  // Room for this many voxels without growing its tables on the way.
+  void reserve(std::size_t voxels);
   std::size_t size() const { return voxels_.size(); }
   bool empty() const { return size() == 0; }
 
