@@ -282,6 +282,16 @@ bool LoopDetectionJob::step() {
 // keyframes added one by one equals that of their concatenation.
 void LoopDetectionJob::add_to_map() {
   Work& work = *work_;
+  if (work.mapped == 0 && work.map_sums) {
+    // Growing the table as it fills would re-insert every voxel in one step (6-7 ms on a VLP-16
+    // loop); the neighbourhood's keyframes overlap, about 4 points or more to a voxel.
+    std::size_t total = 0;
+    for (const Keyframe& keyframe : work.map_keyframes) {
+      for (const CloudPtr& cloud : {keyframe.corners, keyframe.surfaces, keyframe.outliers})
+        total += cloud ? cloud->size() : 0;
+    }
+    work.map_sums->reserve(total / 4);
+  }
   std::size_t points = 0;
   while (work.mapped < work.map_keyframes.size() &&
          points < static_cast<std::size_t>(params_.map_points_per_scan)) {

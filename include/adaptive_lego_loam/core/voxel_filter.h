@@ -17,6 +17,7 @@ class VoxelSums {
   // `points` must have been added before, unchanged.
   void remove(const Cloud& points) { accumulate(points, -1); }
   void clear() { sums_.clear(); }
+  void reserve(std::size_t voxels) { sums_.reserve(voxels); }
   CloudPtr centroids() const;
 
  private:
