@@ -1,9 +1,10 @@
 #pragma once
 // The mapping stage's local map as an incremental voxel filter that answers nearest-neighbour
 // queries itself: points go in and out keyframe by keyframe, each voxel keeps the centroid of its
-// points, and a query visits the coarse cells (at least the search radius wide) around it. No
-// KD-tree is rebuilt when keyframes enter or leave the map, which is what made the scans that
-// refreshed the map several times slower than the others.
+// points, and a query scans the 2 x 2 x 2 coarse cells (each at least twice the search radius
+// wide) on its side of its own cell's middle. No KD-tree is rebuilt when keyframes enter or leave
+// the map, which is what made the scans that refreshed the map several times slower than the
+// others.
 
 #include <Eigen/Core>
 #include <cstdint>
