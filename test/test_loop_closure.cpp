@@ -287,13 +287,10 @@ TEST(LoopClosure, EmptyCloudsAndDisabled) {
   EXPECT_THROW(detect_loop(scene_case.keyframes, 40, params), std::out_of_range);
 }
 
-// Odometry that turns 0.1 deg too far and stretches 0.5 % per step, as keyframe poses; the clouds
-// are seen from the true poses. Detecting the loop and optimising the keyframe graph brings the
-// last keyframe back to within a loop sigma of the truth in position. Its heading keeps part of
-// the error: the candidate's map is built from keyframes 0-9 at their drifted poses (up to 0.9 deg
-// off), so ICP measures the loop about 0.9 deg off; the drift must still at least halve.
-TEST(LoopClosure, KeyframeGraphClosesDriftedLoop) {
-  const Poses truth = square_path();
+namespace {
+
+// `truth` as odometry that turns 0.1 deg too far and stretches 0.5 % per step.
+Poses drifted_odometry(const Poses& truth) {
   Poses estimates{truth.front()};
   for (std::size_t k = 1; k < truth.size(); ++k) {
     Eigen::Isometry3d step = truth[k - 1].inverse() * truth[k];
@@ -301,6 +298,19 @@ TEST(LoopClosure, KeyframeGraphClosesDriftedLoop) {
     step.translation() *= 1.005;
     estimates.push_back(estimates.back() * step);
   }
+  return estimates;
+}
+
+}  // namespace
+
+// Odometry that turns 0.1 deg too far and stretches 0.5 % per step, as keyframe poses; the clouds
+// are seen from the true poses. Detecting the loop and optimising the keyframe graph brings the
+// last keyframe back to within a loop sigma of the truth in position. Its heading keeps part of
+// the error: the candidate's map is built from keyframes 0-9 at their drifted poses (up to 0.9 deg
+// off), so ICP measures the loop about 0.9 deg off; the drift must still at least halve.
+TEST(LoopClosure, KeyframeGraphClosesDriftedLoop) {
+  const Poses truth = square_path();
+  const Poses estimates = drifted_odometry(truth);
   std::vector<Keyframe> keyframes = keyframes_along(truth, estimates);
   const LoopClosureParams params;
   KeyframeGraph graph(params);
@@ -434,13 +444,7 @@ TEST(LoopClosure, JobWithoutCandidateOrPointsIsDoneAtOnce) {
 // the loop and the new poses.
 TEST(LoopClosure, LoopOptimizationInStepsWhileKeyframesArrive) {
   const Poses truth = square_path();
-  Poses estimates{truth.front()};
-  for (std::size_t k = 1; k < truth.size(); ++k) {
-    Eigen::Isometry3d step = truth[k - 1].inverse() * truth[k];
-    step.linear() = step.linear() * planar(0, 0, 0.1).linear();
-    step.translation() *= 1.005;
-    estimates.push_back(estimates.back() * step);
-  }
+  const Poses estimates = drifted_odometry(truth);
   const std::vector<Keyframe> drifted = keyframes_along(truth, estimates);
   LoopClosureParams params;
   params.graph_iterations_per_scan = 1;

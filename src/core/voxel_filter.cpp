@@ -2,18 +2,14 @@
 
 namespace adaptive_lego_loam {
 
-void VoxelSums::accumulate(const Cloud& points, int sign) {
+void VoxelSums::add(const Cloud& points) {
   for (const CloudPoint& p : points) {
-    const uint64_t key =
-        pack_voxel_key(voxel_index(p.x, inverse_leaf_), voxel_index(p.y, inverse_leaf_),
-                       voxel_index(p.z, inverse_leaf_));
-    Sum& sum = sums_.find_or_insert(key);
-    sum.x += sign * double(p.x);
-    sum.y += sign * double(p.y);
-    sum.z += sign * double(p.z);
-    sum.intensity += sign * double(p.intensity);
-    sum.count += sign;
-    if (sum.count == 0) sums_.erase(key);
+    Sum& sum = sums_.find_or_insert(voxel_key(p, inverse_leaf_));
+    sum.x += p.x;
+    sum.y += p.y;
+    sum.z += p.z;
+    sum.intensity += p.intensity;
+    ++sum.count;
   }
 }
 

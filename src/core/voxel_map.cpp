@@ -28,18 +28,13 @@ int64_t VoxelMap::cell_of(int64_t voxel_index) const {
   return floor_divide(voxel_index, voxels_per_cell_);
 }
 
-uint64_t VoxelMap::key_of(const CloudPoint& p) const {
-  return pack_voxel_key(voxel_index(p.x, inverse_leaf_), voxel_index(p.y, inverse_leaf_),
-                        voxel_index(p.z, inverse_leaf_));
-}
-
 template <class Visit>
 void VoxelMap::for_each_key(const Cloud& points, Visit&& visit) {
   // The table is far larger than the caches: a slot asked for a few points ahead is there in time.
   constexpr std::size_t kAhead = 8;
   std::vector<uint64_t> keys(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
-    keys[i] = key_of(points[i]);
+    keys[i] = voxel_key(points[i], inverse_leaf_);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (i + kAhead < points.size()) voxels_.prefetch(keys[i + kAhead]);
     visit(points[i], keys[i]);

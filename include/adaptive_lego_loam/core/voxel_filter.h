@@ -8,15 +8,11 @@
 namespace adaptive_lego_loam {
 
 // Sums of the points falling in each voxel: their centroids are the voxel filter of every point
-// added and not removed since, without filtering them all again when a few change (the local
-// map).
+// added, which may come in several clouds (the loop closure's map, a keyframe at a time).
 class VoxelSums {
  public:
   explicit VoxelSums(double leaf) : inverse_leaf_(1.0 / leaf) {}
-  void add(const Cloud& points) { accumulate(points, 1); }
-  // `points` must have been added before, unchanged.
-  void remove(const Cloud& points) { accumulate(points, -1); }
-  void clear() { sums_.clear(); }
+  void add(const Cloud& points);
   void reserve(std::size_t voxels) { sums_.reserve(voxels); }
   CloudPtr centroids() const;
 
@@ -25,8 +21,6 @@ class VoxelSums {
     int count = 0;
     double x = 0.0, y = 0.0, z = 0.0, intensity = 0.0;
   };
-  void accumulate(const Cloud& points, int sign);
-
   double inverse_leaf_;
   VoxelHashTable<Sum> sums_;
 };

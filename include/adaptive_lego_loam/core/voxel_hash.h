@@ -20,6 +20,13 @@ inline int64_t voxel_index(float coordinate, double inverse_leaf) {
   return static_cast<int64_t>(std::floor(coordinate * inverse_leaf));
 }
 
+// The key of the voxel holding point `p` (anything with x, y, z).
+template <class Point>
+uint64_t voxel_key(const Point& p, double inverse_leaf) {
+  return pack_voxel_key(voxel_index(p.x, inverse_leaf), voxel_index(p.y, inverse_leaf),
+                        voxel_index(p.z, inverse_leaf));
+}
+
 // Maps voxel keys to values. Linear probing over a power-of-two array at most half full;
 // references stay valid until the next insertion or erasure.
 template <class Value>

@@ -61,7 +61,6 @@ class VoxelMap {
   void remove_point(const CloudPoint& p, uint64_t key);
   void attach(uint64_t key, Voxel& voxel);
   void detach(const Voxel& voxel);
-  uint64_t key_of(const CloudPoint& p) const;
   int64_t cell_of(int64_t voxel_index) const;
 
   double leaf_, inverse_leaf_;
