@@ -373,7 +373,7 @@ TEST(NodeStartUp, UnknownSensorNameListsTheKnownOnes) {
       run_node_binary("map_optimization", "__name:=bad_sensor_node _sensor:=velodyne128");
   EXPECT_EQ(status, 1) << output;
   EXPECT_NE(output.find("velodyne128"), std::string::npos) << output;
-  EXPECT_NE(output.find("hdl32, hdl64e, kitti, vlp16"), std::string::npos) << output;
+  EXPECT_NE(output.find("hdl32, hdl64e, kitti, kitti_16rings, vlp16"), std::string::npos) << output;
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "adaptive_lego_loam/core/params.h"
@@ -22,7 +23,7 @@ const char* kMinimal = "sensor:\n  rows: 16\n  columns: 1800\n";
 }  // namespace
 
 TEST(Params, ShippedConfigsLoad) {
-  for (const char* name : {"vlp16", "hdl32", "hdl64e", "kitti"}) {
+  for (const char* name : {"vlp16", "hdl32", "hdl64e", "kitti", "kitti_16rings"}) {
     const std::string path = std::string(CONFIG_DIR) + "/" + name + ".yaml";
     SCOPED_TRACE(path);
     const Config config = load_config(path);
@@ -34,6 +35,15 @@ TEST(Params, ShippedConfigsLoad) {
   EXPECT_EQ(kitti.sensor.row_source, RowSource::kElevation);
   EXPECT_EQ(kitti.sensor.beam_offsets_m.size(), 64u);
   EXPECT_TRUE(kitti.sensor.deskewed);
+  const Config thinned = load_config(std::string(CONFIG_DIR) + "/kitti_16rings.yaml");
+  ASSERT_EQ(thinned.sensor.ring_to_row.size(), 64u);
+  EXPECT_EQ(std::count(thinned.sensor.ring_to_row.begin(), thinned.sensor.ring_to_row.end(), -1),
+            48);
+}
+
+TEST(Params, RingToRowBelowMinusOneIsRejected) {
+  const std::string error = error_of(std::string(kMinimal) + "  ring_to_row: [0, -2, 1]\n");
+  EXPECT_NE(error.find("sensor.ring_to_row"), std::string::npos) << error;
 }
 
 TEST(Params, EvenBeamsFromVerticalLimits) {

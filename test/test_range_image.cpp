@@ -137,6 +137,44 @@ TEST(Projection, RealVlp16FrameRowsFromChannel) {
   EXPECT_LT(double(image.stats().collisions) / image.stats().valid(), 0.02);
 }
 
+TEST(Projection, RingsMappedToMinusOneAreLeftOut) {
+  // KITTI's scan with rings from the 64-beam table (as kitti_to_bag writes it), read with the
+  // 16-ring config: rings 0, 4, ..., 60 become rows 0-15 and every other ring is left out.
+  const Config kitti = load_config(kConfig + "/kitti.yaml");
+  const Config thinned = load_config(kConfig + "/kitti_16rings.yaml");
+  Scan scan = read_kitti_bin(kData + "/kitti_seq07/velodyne/0000000000.bin");
+  RangeImage full;
+  RangeProjector(kitti.sensor).project(scan, full);
+  Scan with_rings;
+  with_rings.has_ring = true;
+  std::vector<int> full_per_ring(64, 0);
+  for (int cell = 0; cell < full.size(); ++cell) {
+    if (!full.occupied(cell)) continue;
+    ScanPoint p = full.point(cell);
+    p.ring = full.row_of(cell);
+    ++full_per_ring[p.ring];
+    with_rings.points.push_back(p);
+  }
+
+  RangeImage image;
+  RangeProjector(thinned.sensor).project(with_rings, image);
+  ASSERT_EQ(image.rows(), 16);
+  std::vector<int> kept_per_row(16, 0);
+  for (int cell = 0; cell < image.size(); ++cell) {
+    if (image.occupied(cell)) ++kept_per_row[image.row_of(cell)];
+  }
+  int left_out = 0;
+  for (int ring = 0; ring < 64; ++ring) {
+    if (ring % 4 != 0) left_out += full_per_ring[ring];
+  }
+  for (int row = 0; row < 16; ++row) {
+    SCOPED_TRACE("row " + std::to_string(row));
+    EXPECT_GT(kept_per_row[row], 0.98 * full_per_ring[4 * row]);
+    EXPECT_LE(kept_per_row[row], full_per_ring[4 * row]);
+  }
+  EXPECT_EQ(image.stats().outside_rows, left_out);
+}
+
 TEST(Projection, RowFromElevationPicksNearestBeam) {
   SensorParams sensor;
   sensor.rows = 3;

@@ -2,6 +2,7 @@
 // search, and the registration cost functions' analytic Jacobians against finite differences.
 
 #include <gtest/gtest.h>
+#include <pcl/filters/voxel_grid.h>
 
 #include <algorithm>
 #include <cmath>
@@ -194,6 +195,26 @@ void expect_nearest_match_brute_force(const VoxelMap& map, const Cloud& expected
 }
 
 }  // namespace
+
+TEST(VoxelFilter, MatchesPclsVoxelGridAndForgetsTheCloudBefore) {
+  // One filter used again, as the stages use theirs: each cloud's output is PCL's for that cloud
+  // and leaf alone (PCL accumulates in float, hence the tolerance).
+  VoxelFilter filter;
+  for (const auto& [seed, leaf] : {std::pair{11u, 0.4}, std::pair{12u, 0.2}, std::pair{13u, 1.2}}) {
+    SCOPED_TRACE("leaf " + std::to_string(leaf));
+    const CloudPtr cloud = random_cloud(seed == 12u ? 20000 : 5000, seed);
+    Cloud expected;
+    pcl::VoxelGrid<CloudPoint> grid;
+    grid.setLeafSize(leaf, leaf, leaf);
+    grid.setInputCloud(cloud);
+    grid.filter(expected);
+    const std::vector<Eigen::Vector3f> ours = sorted_points(*filter(*cloud, leaf));
+    const std::vector<Eigen::Vector3f> pcl_points = sorted_points(expected);
+    ASSERT_EQ(ours.size(), pcl_points.size());
+    for (std::size_t i = 0; i < ours.size(); ++i)
+      ASSERT_LT((ours[i] - pcl_points[i]).norm(), 1e-4f) << i;
+  }
+}
 
 TEST(VoxelMap, HoldsTheVoxelFilterAndFindsItsNearestCentroids) {
   const CloudPtr cloud = random_cloud(20000, 3);

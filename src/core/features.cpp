@@ -129,7 +129,7 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
       if (label_[i] <= 0) row_less_flat_.push_back(to_cloud_point(points[i], row));
     }
   }
-  *out.less_flat += *voxel_filter(row_less_flat_, params_.less_flat_voxel);
+  *out.less_flat += *voxel_filter_(row_less_flat_, params_.less_flat_voxel);
 }
 
 void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,

@@ -136,7 +136,7 @@ void read_sensor(SectionReader& in, SensorParams& s) {
   in.number("vertical_max_deg", vertical_max, -90.0, 90.0);
   in.list("beam_angles_deg", s.beam_angles_deg, -90.0, 90.0);
   in.list("beam_offsets_m", s.beam_offsets_m, -1.0, 1.0);
-  in.list("ring_to_row", s.ring_to_row, 0, 511);
+  in.list("ring_to_row", s.ring_to_row, -1, 511);
   in.number("min_range", s.min_range, 0.0, 50.0);
   in.number("max_range", s.max_range, 1.0, 1000.0);
   in.number("mount_angle_deg", s.mount_angle_deg, -90.0, 90.0);

@@ -13,6 +13,11 @@ void VoxelSums::add(const Cloud& points) {
   }
 }
 
+void VoxelSums::reset(double leaf) {
+  inverse_leaf_ = 1.0 / leaf;
+  sums_.clear();
+}
+
 CloudPtr VoxelSums::centroids() const {
   CloudPtr out(new Cloud);
   out->reserve(sums_.size());
@@ -27,11 +32,15 @@ CloudPtr VoxelSums::centroids() const {
   return out;
 }
 
-CloudPtr voxel_filter(const Cloud& cloud, double leaf) {
+CloudPtr VoxelFilter::operator()(const Cloud& cloud, double leaf) {
   if (leaf <= 0.0 || cloud.empty()) return CloudPtr(new Cloud(cloud));
-  VoxelSums sums(leaf);
-  sums.add(cloud);
-  return sums.centroids();
+  sums_.reset(leaf);
+  sums_.add(cloud);
+  return sums_.centroids();
+}
+
+CloudPtr voxel_filter(const Cloud& cloud, double leaf) {
+  return VoxelFilter()(cloud, leaf);
 }
 
 }  // namespace adaptive_lego_loam

@@ -19,9 +19,9 @@ int64_t floor_divide(int64_t value, int64_t divisor) {
 VoxelMap::VoxelMap(double leaf, double max_radius)
     : leaf_(leaf),
       inverse_leaf_(1.0 / leaf),
-      voxels_per_cell_(
-          std::max<int64_t>(1, static_cast<int64_t>(std::ceil(2.0 * max_radius / leaf)))),
+      voxels_per_cell_(std::max<int64_t>(1, static_cast<int64_t>(std::ceil(max_radius / leaf)))),
       cell_size_(voxels_per_cell_ * leaf),
+      cell_size_f_(static_cast<float>(cell_size_)),
       max_squared_radius_(static_cast<float>(max_radius * max_radius)) {}
 
 int64_t VoxelMap::cell_of(int64_t voxel_index) const {
@@ -51,14 +51,14 @@ void VoxelMap::remove(const Cloud& points) {
 
 void VoxelMap::clear() {
   voxels_.clear();
-  cell_ids_.clear();
+  cell_refs_.clear();
   cells_.clear();
   free_cells_.clear();
 }
 
 void VoxelMap::reserve(std::size_t voxels) {
   voxels_.reserve(voxels);
-  cell_ids_.reserve(voxels / 8);
+  cell_refs_.reserve(voxels / 8);
 }
 
 void VoxelMap::add_point(const CloudPoint& p, uint64_t key) {
@@ -101,22 +101,24 @@ void VoxelMap::attach(uint64_t key, Voxel& voxel) {
   };
   const uint64_t cell_key =
       pack_voxel_key(cell_of(unpack(key, 0)), cell_of(unpack(key, 21)), cell_of(unpack(key, 42)));
-  uint32_t& cell_slot = cell_ids_.find_or_insert(cell_key);
-  if (cell_slot == 0) {
+  CellRef& ref = cell_refs_.find_or_insert(cell_key);
+  if (ref.index_plus_one == 0) {
     if (free_cells_.empty()) {
       cells_.emplace_back();
-      cell_slot = static_cast<uint32_t>(cells_.size());
+      ref.index_plus_one = static_cast<uint32_t>(cells_.size());
     } else {
-      cell_slot = free_cells_.back() + 1;
+      ref.index_plus_one = free_cells_.back() + 1;
       free_cells_.pop_back();
     }
-    cells_[cell_slot - 1].key = cell_key;
+    cells_[ref.index_plus_one - 1].key = cell_key;
   }
-  voxel.cell = cell_slot - 1;
+  voxel.cell = ref.index_plus_one - 1;
   Cell& cell = cells_[voxel.cell];
   voxel.slot = static_cast<uint32_t>(cell.centroids.size());
   cell.centroids.emplace_back(0.f, 0.f, 0.f);
   cell.voxel_keys.push_back(key);
+  ref.count = static_cast<uint32_t>(cell.centroids.size());
+  ref.centroids = cell.centroids.data();
 }
 
 // Frees an emptied voxel's slot: the cell's last voxel takes it.
@@ -129,8 +131,10 @@ void VoxelMap::detach(const Voxel& voxel) {
   cell.centroids.pop_back();
   cell.voxel_keys.pop_back();
   if (cell.centroids.empty()) {
-    cell_ids_.erase(cell.key);
+    cell_refs_.erase(cell.key);
     free_cells_.push_back(voxel.cell);
+  } else {
+    cell_refs_.find(cell.key)->count = static_cast<uint32_t>(cell.centroids.size());
   }
 }
 
@@ -141,36 +145,35 @@ int VoxelMap::nearest(const Eigen::Vector3f& query, int k, Eigen::Vector3f* poin
   NearestCandidates<Eigen::Vector3f> found{
       k, 0, points, squared_distances,
       std::nextafter(bound, std::numeric_limits<float>::infinity())};
-  // A cell is at least twice the radius wide, so the ball around the query lies in the 2 x 2 x 2
-  // cells on the query's side of its cell's middle along each axis.
-  int64_t first_cell[3];
-  float gap_squared[3][2];  // per axis: the squared gap to the first and the second cell
-  int own[3];               // per axis: which of the two holds the query
+  // A cell is at least the radius wide, so the ball around the query lies in the 3 x 3 x 3 cells
+  // around the query's own. Along each axis they are visited own, nearer neighbour, farther one:
+  // the own cell usually holds the nearest points, and a tight bound skips most of the others.
+  int64_t cells[3][3];
+  float gap_squared[3][3];
   for (int a = 0; a < 3; ++a) {
     const int64_t cell = cell_of(voxel_index(query[a], inverse_leaf_));
-    const double low = cell * cell_size_;
-    const double into = query[a] - low;
-    const bool upper_half = into >= 0.5 * cell_size_;
-    first_cell[a] = upper_half ? cell : cell - 1;
-    own[a] = upper_half ? 0 : 1;
-    const double gap = upper_half ? std::max(0.0, cell_size_ - into) : std::max(0.0, into);
-    gap_squared[a][upper_half ? 0 : 1] = 0.f;
-    gap_squared[a][upper_half ? 1 : 0] = static_cast<float>(gap * gap);
+    const float into = static_cast<float>(query[a] - cell * cell_size_);
+    const float below = std::max(0.f, into), above = std::max(0.f, cell_size_f_ - into);
+    const bool lower_nearer = below <= above;
+    cells[a][0] = cell;
+    cells[a][1] = lower_nearer ? cell - 1 : cell + 1;
+    cells[a][2] = lower_nearer ? cell + 1 : cell - 1;
+    gap_squared[a][0] = 0.f;
+    gap_squared[a][1] = lower_nearer ? below * below : above * above;
+    gap_squared[a][2] = lower_nearer ? above * above : below * below;
   }
-  // The query's own cell first: it usually holds the nearest points and tightens the bound.
-  for (int other_x = 0; other_x < 2; ++other_x) {
-    for (int other_y = 0; other_y < 2; ++other_y) {
-      for (int other_z = 0; other_z < 2; ++other_z) {
-        const int ix = own[0] ^ other_x, iy = own[1] ^ other_y, iz = own[2] ^ other_z;
+  for (int ix = 0; ix < 3; ++ix) {
+    for (int iy = 0; iy < 3; ++iy) {
+      for (int iz = 0; iz < 3; ++iz) {
         const float gap = gap_squared[0][ix] + gap_squared[1][iy] + gap_squared[2][iz];
         if (gap >= found.worst) continue;
-        const uint32_t* cell_id = cell_ids_.find(
-            pack_voxel_key(first_cell[0] + ix, first_cell[1] + iy, first_cell[2] + iz));
-        if (!cell_id) continue;
-        for (const Eigen::Vector3f& c : cells_[*cell_id - 1].centroids) {
-          const float dx = query[0] - c[0], dy = query[1] - c[1], dz = query[2] - c[2];
+        const CellRef* ref =
+            cell_refs_.find(pack_voxel_key(cells[0][ix], cells[1][iy], cells[2][iz]));
+        if (!ref) continue;
+        for (const Eigen::Vector3f* c = ref->centroids; c != ref->centroids + ref->count; ++c) {
+          const float dx = query[0] - (*c)[0], dy = query[1] - (*c)[1], dz = query[2] - (*c)[2];
           const float distance = dx * dx + dy * dy + dz * dz;
-          if (distance < found.worst) found.add(distance, c);
+          if (distance < found.worst) found.add(distance, *c);
         }
       }
     }

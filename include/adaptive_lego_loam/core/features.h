@@ -9,6 +9,7 @@
 #include "adaptive_lego_loam/core/cloud.h"
 #include "adaptive_lego_loam/core/params.h"
 #include "adaptive_lego_loam/core/segmentation.h"
+#include "adaptive_lego_loam/core/voxel_filter.h"
 
 namespace adaptive_lego_loam {
 
@@ -52,6 +53,7 @@ class FeatureExtractor {
   std::vector<uint8_t> picked_;  // no longer available for selection
   std::vector<int8_t> label_;    // 2 sharp, 1 less sharp, -1 flat, 0 none
   Cloud row_less_flat_;
+  VoxelFilter voxel_filter_;
 };
 
 }  // namespace adaptive_lego_loam

@@ -13,6 +13,7 @@
 #include "adaptive_lego_loam/core/mapping.h"
 #include "adaptive_lego_loam/core/params.h"
 #include "adaptive_lego_loam/core/timing.h"
+#include "adaptive_lego_loam/core/voxel_filter.h"
 
 namespace adaptive_lego_loam {
 
@@ -81,6 +82,7 @@ class LidarMapping {
   LocalMap local_map_;
   ScanToMapMatcher matcher_;
   TransformFusion fusion_;
+  VoxelFilter voxel_filter_;  // one table for the scan's and the keyframes' filters
   std::vector<Keyframe> keyframes_;
   int scans_ = 0;
   std::optional<Eigen::Isometry3d> last_odometry_pose_;

@@ -31,7 +31,8 @@ struct SensorParams {
   // about 0.2 m and 0.12 m above its origin; without this the elevation of a beam drifts with
   // range by more than the row spacing. Zero when not given.
   std::vector<double> beam_offsets_m;
-  // ring value -> row, when the driver does not number rings bottom-up. Identity when empty.
+  // ring value -> row, when the driver does not number rings bottom-up; -1 leaves the ring out (a
+  // dead laser, or KITTI's 64 rings thinned to a VLP-16-sized 16). Identity when empty.
   std::vector<int> ring_to_row;
   double min_range = 1.0;    // m
   double max_range = 100.0;  // m

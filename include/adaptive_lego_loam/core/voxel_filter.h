@@ -11,9 +11,13 @@ namespace adaptive_lego_loam {
 // added, which may come in several clouds (the loop closure's map, a keyframe at a time).
 class VoxelSums {
  public:
-  explicit VoxelSums(double leaf) : inverse_leaf_(1.0 / leaf) {}
+  explicit VoxelSums(double leaf = 1.0) : inverse_leaf_(1.0 / leaf) {}
   void add(const Cloud& points);
   void reserve(std::size_t voxels) { sums_.reserve(voxels); }
+  // Forgets every voxel (keeping the memory) and takes a new leaf.
+  void reset(double leaf);
+  // Every voxel's centroid, in the table's order (which depends on the table's size: a filter
+  // used again gives the same cloud in another order).
   CloudPtr centroids() const;
 
  private:
@@ -25,7 +29,18 @@ class VoxelSums {
   VoxelHashTable<Sum> sums_;
 };
 
-// Voxel-filtered copy of `cloud` (no filtering when leaf <= 0).
+// A voxel filter that keeps its table from one cloud to the next: the stages that filter every
+// scan hold one, and do not allocate and grow a table each time (0.25 ms a VLP-16 scan).
+class VoxelFilter {
+ public:
+  // Voxel-filtered copy of `cloud` (no filtering when leaf <= 0).
+  CloudPtr operator()(const Cloud& cloud, double leaf);
+
+ private:
+  VoxelSums sums_;
+};
+
+// A one-off voxel filter.
 CloudPtr voxel_filter(const Cloud& cloud, double leaf);
 
 }  // namespace adaptive_lego_loam

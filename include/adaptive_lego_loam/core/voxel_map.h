@@ -1,10 +1,10 @@
 #pragma once
 // The mapping stage's local map as an incremental voxel filter that answers nearest-neighbour
 // queries itself: points go in and out keyframe by keyframe, each voxel keeps the centroid of its
-// points, and a query scans the 2 x 2 x 2 coarse cells (each at least twice the search radius
-// wide) on its side of its own cell's middle. No KD-tree is rebuilt when keyframes enter or leave
-// the map, which is what made the scans that refreshed the map several times slower than the
-// others.
+// points, and a query scans the 3 x 3 x 3 coarse cells (each at least the search radius wide)
+// around its own, skipping those farther than its k-th best. No KD-tree is rebuilt when keyframes
+// enter or leave the map, which is what made the scans that refreshed the map several times slower
+// than the others.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -19,6 +19,11 @@ class VoxelMap {
  public:
   // `leaf`: the voxel filter's leaf (m); `max_radius`: the largest search radius (m) queries use.
   VoxelMap(double leaf, double max_radius);
+  // Moves only: the cell table points into the cells' own storage.
+  VoxelMap(const VoxelMap&) = delete;
+  VoxelMap& operator=(const VoxelMap&) = delete;
+  VoxelMap(VoxelMap&&) = default;
+  VoxelMap& operator=(VoxelMap&&) = default;
 
   void add(const Cloud& points);
   // `points` must have been added before, unchanged.
@@ -66,9 +71,17 @@ class VoxelMap {
   double leaf_, inverse_leaf_;
   int64_t voxels_per_cell_;  // along each axis
   double cell_size_;
+  float cell_size_f_;
   float max_squared_radius_;
   VoxelHashTable<Voxel> voxels_;
-  VoxelHashTable<uint32_t> cell_ids_;  // cell key -> index in cells_ + 1
+  // What a query needs of a cell, in the table it looks the cell up in: one memory access less
+  // than going through cells_.
+  struct CellRef {
+    uint32_t index_plus_one = 0;  // in cells_
+    uint32_t count = 0;
+    const Eigen::Vector3f* centroids = nullptr;  // cells_[index].centroids.data()
+  };
+  VoxelHashTable<CellRef> cell_refs_;  // by cell key
   std::vector<Cell> cells_;
   std::vector<uint32_t> free_cells_;
 };
