@@ -220,7 +220,7 @@ TEST(VoxelMap, HoldsTheVoxelFilterAndFindsItsNearestCentroids) {
   const CloudPtr cloud = random_cloud(20000, 3);
   VoxelMap map(0.4, 1.1);
   map.add(*cloud);
-  const std::vector<Eigen::Vector3f> centroids = sorted_points(*map.centroids());
+  const std::vector<Eigen::Vector3f> centroids = sorted_points(map.centroids());
   const std::vector<Eigen::Vector3f> filtered = sorted_points(*voxel_filter(*cloud, 0.4));
   ASSERT_EQ(centroids.size(), filtered.size());
   EXPECT_EQ(map.size(), filtered.size());
@@ -279,8 +279,7 @@ std::vector<Keyframe> keyframes_along_x(int count) {
 
 std::vector<float> map_xs(const LocalMap& map) {
   std::vector<float> xs;
-  const CloudPtr surfaces = map.surfaces();
-  for (const CloudPoint& p : *surfaces)
+  for (const CloudPoint& p : map.surfaces())
     xs.push_back(p.x);
   std::sort(xs.begin(), xs.end());
   return xs;
@@ -331,15 +330,13 @@ TEST(LocalMap, AfterALoopAnswersFromTheOldPlacementUntilTheNewOneIsComplete) {
   for (int update = 0; update < 2; ++update) {
     EXPECT_FALSE(map.update(keyframes, Eigen::Vector3d::Zero()));
     EXPECT_TRUE(map.to_placement().isApprox(correction.inverse()));
-    const CloudPtr surfaces = map.surfaces();
-    for (const CloudPoint& p : *surfaces)
+    for (const CloudPoint& p : map.surfaces())
       EXPECT_FLOAT_EQ(p.y, 0.f);
   }
   EXPECT_TRUE(map.update(keyframes, Eigen::Vector3d::Zero()));
   EXPECT_TRUE(map.to_placement().isApprox(Eigen::Isometry3d::Identity()));
   EXPECT_EQ(map_xs(map), std::vector<float>({0.f, 1.f, 2.f, 3.f, 4.f, 5.f}));
-  const CloudPtr surfaces = map.surfaces();
-  for (const CloudPoint& p : *surfaces)
+  for (const CloudPoint& p : map.surfaces())
     EXPECT_FLOAT_EQ(p.y, 1.f);
 }
 

@@ -273,8 +273,26 @@ TEST(FeatureConversions, KeyframePositionsAndLocalMap) {
   keyframe.surfaces->push_back(p);
   map.update({keyframe}, Eigen::Vector3d::Zero());
   const Cloud surround = *cloud_from_ros(local_map_to_ros(map, header_at(1, "map")), "s");
-  EXPECT_EQ(surround.size(), map.corners()->size() + map.surfaces()->size());
+  EXPECT_EQ(surround.size(), map.corners().size() + map.surfaces().size());
   EXPECT_GE(surround.size(), 2u);
+
+  // A loop moved the keyframes 1 m along y: until the map is placed again, what is shown is its
+  // old placement moved by the correction, where the corrected keyframe says the points are.
+  std::vector<Keyframe> placed(3, keyframe);  // three, so that placing them again takes two scans
+  for (int i = 0; i < 3; ++i)
+    placed[i].index = i;
+  map.update(placed, Eigen::Vector3d::Zero());
+  Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
+  correction.translation().y() = 1.0;
+  for (Keyframe& moved : placed)
+    moved.pose = correction;
+  map.keyframes_moved(correction);
+  map.update(placed, Eigen::Vector3d::Zero());
+  ASSERT_FALSE(map.to_placement().isApprox(Eigen::Isometry3d::Identity()));
+  const Cloud shown = *cloud_from_ros(local_map_to_ros(map, header_at(2, "map")), "s");
+  ASSERT_FALSE(shown.empty());
+  for (const CloudPoint& point : shown)
+    EXPECT_NEAR(point.y, 1.f, 1e-5f);
 }
 
 namespace {

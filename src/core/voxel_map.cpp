@@ -181,16 +181,16 @@ int VoxelMap::nearest(const Eigen::Vector3f& query, int k, Eigen::Vector3f* poin
   return found.count;
 }
 
-CloudPtr VoxelMap::centroids() const {
-  CloudPtr out(new Cloud);
-  out->reserve(size());
+Cloud VoxelMap::centroids() const {
+  Cloud out;
+  out.reserve(size());
   for (const Cell& cell : cells_) {
     for (std::size_t slot = 0; slot < cell.centroids.size(); ++slot) {
       const Voxel& voxel = *voxels_.find(cell.voxel_keys[slot]);
       CloudPoint p;
       p.getVector3fMap() = cell.centroids[slot];
       p.intensity = static_cast<float>(voxel.sum[3] / voxel.count);
-      out->push_back(p);
+      out.push_back(p);
     }
   }
   return out;

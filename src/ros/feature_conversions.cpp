@@ -57,8 +57,13 @@ sensor_msgs::PointCloud2 keyframe_positions_to_ros(const std::vector<Keyframe>& 
 }
 
 sensor_msgs::PointCloud2 local_map_to_ros(const LocalMap& map, const std_msgs::Header& header) {
-  Cloud surround = *map.corners();
-  surround += *map.surfaces();
+  Cloud surround = map.corners();
+  surround += map.surfaces();
+  // While the map is placed again after a loop, its points are still where the keyframes were
+  // before the correction: shown through it, they sit where the corrected poses say.
+  if (!map.to_placement().isApprox(Eigen::Isometry3d::Identity())) {
+    return cloud_to_ros(*transform_cloud(surround, map.to_placement().inverse()), header);
+  }
   return cloud_to_ros(surround, header);
 }
 

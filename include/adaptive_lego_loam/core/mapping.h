@@ -33,9 +33,10 @@ class LocalMap {
 
   const VoxelMap& corner_map() const { return active_.corners; }
   const VoxelMap& surface_map() const { return active_.surfaces; }
-  // The voxel centroids in the frame of to_placement(), made on each call (for display).
-  CloudPtr corners() const { return active_.corners.centroids(); }
-  CloudPtr surfaces() const { return active_.surfaces.centroids(); }
+  // The voxel centroids in the frame of to_placement(), made on each call (for display). By
+  // value: a range-for over a temporary pointer's cloud would dangle.
+  Cloud corners() const { return active_.corners.centroids(); }
+  Cloud surfaces() const { return active_.surfaces.centroids(); }
   bool empty() const { return active_.corners.empty() && active_.surfaces.empty(); }
 
  private:

@@ -41,7 +41,7 @@ class VoxelMap {
               float* squared_distances, float max_squared_distance) const;
 
   // Every voxel's centroid (intensity averaged too), for display.
-  CloudPtr centroids() const;
+  Cloud centroids() const;
 
  private:
   // A voxel's sums live in the hash table itself (one memory access per point added or removed);
