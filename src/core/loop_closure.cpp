@@ -441,16 +441,17 @@ void KeyframeGraph::set_poses(const std::vector<Keyframe>& keyframes) {
 LoopOptimization::LoopOptimization(const KeyframeGraph& graph, const LoopDetection& loop,
                                    const LoopClosureParams& params)
     : loop_(loop),
-      optimized_(graph),
+      with_loop_(graph),
       iterations_per_step_(params.graph_iterations_per_scan),
       max_iterations_(graph.graph().options().max_iterations) {
-  optimized_.add_loop(loop);
+  with_loop_.add_loop(loop);
+  optimized_ = reduce_graph(with_loop_.graph(), params.graph_max_nodes);
 }
 
 bool LoopOptimization::step() {
   if (done_) return true;
   const int iterations = std::min(iterations_per_step_, max_iterations_ - iterations_);
-  const PoseGraphSummary summary = optimized_.optimize_nodes(iterations, trust_region_radius_);
+  const PoseGraphSummary summary = optimized_.graph.optimize(iterations, trust_region_radius_);
   iterations_ += iterations;
   trust_region_radius_ = summary.trust_region_radius;
   done_ = summary.converged || iterations_ >= max_iterations_;
@@ -460,15 +461,15 @@ bool LoopOptimization::step() {
 Eigen::Isometry3d LoopOptimization::apply(KeyframeGraph& graph,
                                           std::vector<Keyframe>& keyframes) const {
   if (!done_) throw std::logic_error("LoopOptimization: applied before it finished");
-  const PoseGraph& optimized = optimized_.graph();
-  const int covered = optimized.node_count();
+  const std::vector<Eigen::Isometry3d> optimized = expand_poses(optimized_, with_loop_.graph());
+  const int covered = static_cast<int>(optimized.size());
   if (static_cast<int>(keyframes.size()) < covered ||
       graph.graph().node_count() != static_cast<int>(keyframes.size())) {
     throw std::invalid_argument("LoopOptimization: keyframes do not extend the optimised graph");
   }
   const Eigen::Isometry3d last_before = keyframes[covered - 1].pose;
   for (int i = 0; i < covered; ++i)
-    keyframes[i].pose = optimized.pose(i);
+    keyframes[i].pose = optimized[i];
   const Eigen::Isometry3d motion = keyframes[covered - 1].pose * last_before.inverse();
   for (std::size_t i = covered; i < keyframes.size(); ++i)
     keyframes[i].pose = motion * keyframes[i].pose;

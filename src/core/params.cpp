@@ -257,6 +257,7 @@ void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
   in.number("map_points_per_scan", l.map_points_per_scan, 1, 100000000);
   in.number("icp_iterations_per_scan", l.icp_iterations_per_scan, 1, 10000);
   in.number("graph_iterations_per_scan", l.graph_iterations_per_scan, 1, 10000);
+  in.number("graph_max_nodes", l.graph_max_nodes, 10, 1000000);
   in.number("odometry_sigma_translation", l.odometry_sigma_translation, 1.0e-6, 100.0);
   in.number("odometry_sigma_rotation_deg", l.odometry_sigma_rotation_deg, 1.0e-6, 180.0);
   in.number("loop_sigma_translation", l.loop_sigma_translation, 1.0e-6, 100.0);

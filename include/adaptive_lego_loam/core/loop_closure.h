@@ -128,9 +128,10 @@ class KeyframeGraph {
 };
 
 // add_loop and optimize in bounded steps, for a mapping that keeps adding keyframes meanwhile: a
-// copy of the graph with the loop is optimised params.graph_iterations_per_scan solver iterations
-// a step, each resuming where the last stopped, until it converges or has taken the pose graph's
-// iteration limit (PoseGraphOptions::max_iterations).
+// copy of the graph with the loop, reduced to params.graph_max_nodes nodes (reduce_graph), is
+// optimised params.graph_iterations_per_scan solver iterations a step, each resuming where the
+// last stopped, until it converges or has taken the pose graph's iteration limit
+// (PoseGraphOptions::max_iterations).
 class LoopOptimization {
  public:
   // `loop` must be accepted (std::invalid_argument otherwise).
@@ -149,7 +150,8 @@ class LoopOptimization {
 
  private:
   LoopDetection loop_;
-  KeyframeGraph optimized_;
+  KeyframeGraph with_loop_;  // the graph and the loop, at the poses before
+  ReducedGraph optimized_;
   int iterations_per_step_;
   int max_iterations_;
   int iterations_ = 0;

@@ -107,4 +107,19 @@ class PoseGraph {
   std::vector<Information6> whitenings_;  // per edge: L^T with L * L^T = information
 };
 
+// A pose graph over some of another's nodes: at most max_nodes, all of them when there
+// are no more. Kept: the first and the last node, both ends of every loop edge, and nodes evenly
+// spaced between. Consecutive kept nodes are tied by the odometry edges between them composed (the
+// product of their measurements; the inverse of their covariances carried to its end and summed).
+// With every node kept it is the same graph, edges in the same order.
+struct ReducedGraph {
+  PoseGraph graph;
+  std::vector<int> nodes;  // reduced node -> full node, ascending
+};
+// `full`'s edges other than loops must be odometry edges i -> i + 1 (as KeyframeGraph makes them).
+ReducedGraph reduce_graph(const PoseGraph& full, int max_nodes);
+// Every full node's pose from the reduced graph's solution: the kept nodes take theirs; a node
+// between two kept ones follows both rigidly, blended by where it sits between them.
+std::vector<Eigen::Isometry3d> expand_poses(const ReducedGraph& reduced, const PoseGraph& full);
+
 }  // namespace adaptive_lego_loam
