@@ -425,10 +425,6 @@ PoseGraphSummary KeyframeGraph::optimize(std::vector<Keyframe>& keyframes) {
   return summary;
 }
 
-PoseGraphSummary KeyframeGraph::optimize_nodes(int max_iterations, double trust_region_radius) {
-  return graph_.optimize(max_iterations, trust_region_radius);
-}
-
 void KeyframeGraph::set_poses(const std::vector<Keyframe>& keyframes) {
   if (static_cast<int>(keyframes.size()) != graph_.node_count()) {
     throw std::invalid_argument("KeyframeGraph: " + std::to_string(keyframes.size()) +

@@ -114,8 +114,6 @@ class KeyframeGraph {
   void add_loop(const LoopDetection& loop);
   // Optimises and writes the poses back into keyframes (whose size must equal the node count).
   PoseGraphSummary optimize(std::vector<Keyframe>& keyframes);
-  // Optimises the nodes alone, resumably (see PoseGraph::optimize).
-  PoseGraphSummary optimize_nodes(int max_iterations, double trust_region_radius);
   // Sets every node's pose from its keyframe (sizes must match).
   void set_poses(const std::vector<Keyframe>& keyframes);
 

@@ -107,11 +107,12 @@ class PoseGraph {
   std::vector<Information6> whitenings_;  // per edge: L^T with L * L^T = information
 };
 
-// A pose graph over some of another's nodes: at most max_nodes, all of them when there
-// are no more. Kept: the first and the last node, both ends of every loop edge, and nodes evenly
-// spaced between. Consecutive kept nodes are tied by the odometry edges between them composed (the
-// product of their measurements; the inverse of their covariances carried to its end and summed).
-// With every node kept it is the same graph, edges in the same order.
+// A pose graph over some of another's nodes: at most max_nodes (unless the loops alone have more
+// ends), all of them when there are no more. Kept: the first and the last node, both ends of every
+// loop edge, and nodes evenly spaced between. Consecutive kept nodes are tied by the odometry
+// edges between them composed: the product of their measurements, with the inverse of the sum of
+// their covariances, each carried to the chain's end, as information. With every node kept it is
+// the same graph, edges in the same order.
 struct ReducedGraph {
   PoseGraph graph;
   std::vector<int> nodes;  // reduced node -> full node, ascending
