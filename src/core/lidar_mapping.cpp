@@ -95,10 +95,10 @@ void LidarMapping::add_keyframe(const FeatureSet& features, double stamp) {
   keyframe.frame = scans_;
   keyframe.stamp = stamp;
   keyframe.pose = pose_;
-  keyframe.corners = voxel_filter_(*features.less_sharp, params_.corner_voxel);
+  keyframe.corners = keyframe_filter_(*features.less_sharp, params_.corner_voxel);
   Cloud surfaces = *features.less_flat;
   surfaces += *features.outliers;
-  keyframe.surfaces = voxel_filter_(surfaces, params_.surface_voxel);
+  keyframe.surfaces = keyframe_filter_(surfaces, params_.surface_voxel);
   keyframe.outliers = features.outliers;
   graph_.add_keyframe(keyframe);
   keyframes_.push_back(std::move(keyframe));
@@ -124,10 +124,10 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   if (params_.enabled && !keyframes_.empty()) {
     local_map_.update(keyframes_, pose.translation());
     out.times.add("local_map", watch.lap_ms());
-    const CloudPtr corners = voxel_filter_(*features.less_sharp, params_.scan_corner_voxel);
+    const CloudPtr corners = scan_filter_(*features.less_sharp, params_.scan_corner_voxel);
     Cloud surface_points = *features.less_flat;
     surface_points += *features.outliers;
-    const CloudPtr surfaces = voxel_filter_(surface_points, params_.scan_surface_voxel);
+    const CloudPtr surfaces = scan_filter_(surface_points, params_.scan_surface_voxel);
     out.match = matcher_.match(*corners, *surfaces, local_map_, pose, prior);
     pose = out.match.pose;
     out.times.add("mapping", watch.lap_ms());

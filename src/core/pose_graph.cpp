@@ -282,7 +282,7 @@ ReducedGraph reduce_graph(const PoseGraph& full, int max_nodes) {
   // The odometry edges since the last kept node, composed, with the covariance of the composition
   // (each edge's error is a twist at its far end: carried to the chain's end by the adjoint).
   Eigen::Isometry3d chain = Eigen::Isometry3d::Identity();
-  int chain_from = 0, chain_edges = 0;
+  int chain_from = 0, chain_edges = 0, odometry_reached = 0;
   Information6 chain_covariance = Information6::Zero();
   for (const PoseGraphEdge& edge : full.edges()) {
     if (edge.kind == EdgeKind::kLoop) {
@@ -292,10 +292,13 @@ ReducedGraph reduce_graph(const PoseGraph& full, int max_nodes) {
       reduced.graph.add_edge(loop);
       continue;
     }
-    if (edge.to != edge.from + 1) {
-      throw std::invalid_argument("reduce_graph: odometry edge " + std::to_string(edge.from) +
-                                  " -> " + std::to_string(edge.to) + " does not join neighbours");
+    if (edge.to != edge.from + 1 || edge.from != odometry_reached) {
+      throw std::invalid_argument(
+          "reduce_graph: odometry edge " + std::to_string(edge.from) + " -> " +
+          std::to_string(edge.to) + ", expected " + std::to_string(odometry_reached) + " -> " +
+          std::to_string(odometry_reached + 1) + " (a chain through every node in order)");
     }
+    odometry_reached = edge.to;
     if (chain_edges == 0) {
       chain_from = edge.from;
       chain = Eigen::Isometry3d::Identity();

@@ -82,7 +82,8 @@ class LidarMapping {
   LocalMap local_map_;
   ScanToMapMatcher matcher_;
   TransformFusion fusion_;
-  VoxelFilter voxel_filter_;  // one table for the scan's and the keyframes' filters
+  // Their tables sized by what each filters: the scan's few coarse voxels, a keyframe's many.
+  VoxelFilter scan_filter_, keyframe_filter_;
   std::vector<Keyframe> keyframes_;
   int scans_ = 0;
   std::optional<Eigen::Isometry3d> last_odometry_pose_;

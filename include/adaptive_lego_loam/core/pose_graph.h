@@ -117,7 +117,8 @@ struct ReducedGraph {
   PoseGraph graph;
   std::vector<int> nodes;  // reduced node -> full node, ascending
 };
-// `full`'s edges other than loops must be odometry edges i -> i + 1 (as KeyframeGraph makes them).
+// `full`'s edges other than loops must be odometry edges 0 -> 1, 1 -> 2, ... in that order (as
+// KeyframeGraph makes them); std::invalid_argument otherwise.
 ReducedGraph reduce_graph(const PoseGraph& full, int max_nodes);
 // Every full node's pose from the reduced graph's solution: the kept nodes take theirs; a node
 // between two kept ones follows both rigidly, blended by where it sits between them.
