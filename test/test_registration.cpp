@@ -243,6 +243,22 @@ TEST(VoxelMap, RemovedPointsLeaveTheRestAsIfAddedAlone) {
   EXPECT_EQ(map.nearest(Eigen::Vector3f::Zero(), 1, &point, &squared, 1.f), 0);
 }
 
+TEST(VoxelMap, CellsEmptiedAndReusedAnswerAsIfNew) {
+  // Sparse clouds: about 5 points a cell, so removing one empties many cells and the next one
+  // takes their freed places (and table entries) again.
+  const CloudPtr a = random_cloud(3000, 31), b = random_cloud(3000, 32), c = random_cloud(3000, 33);
+  VoxelMap map(0.2, 1.1);
+  map.add(*a);
+  map.add(*b);
+  map.remove(*a);
+  map.add(*c);
+  Cloud b_and_c = *b;
+  b_and_c += *c;
+  expect_nearest_match_brute_force(map, b_and_c, 0.2, 10);
+  map.remove(*b);
+  expect_nearest_match_brute_force(map, *c, 0.2, 11);
+}
+
 TEST(VoxelMap, SearchesNoFurtherThanItsRadius) {
   Cloud cloud;
   CloudPoint p;
