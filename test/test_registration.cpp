@@ -216,6 +216,22 @@ TEST(VoxelFilter, MatchesPclsVoxelGridAndForgetsTheCloudBefore) {
   }
 }
 
+TEST(VoxelFilter, OfTwoCloudsIsTheFilterOfTheirJoin) {
+  // The mapping filters a scan's surfaces and outliers together without copying them into one.
+  const CloudPtr surfaces = random_cloud(4000, 14), outliers = random_cloud(500, 15);
+  Cloud joined = *surfaces;
+  joined += *outliers;
+  VoxelFilter filter;
+  const CloudPtr expected = filter(joined, 0.4);
+  const CloudPtr together = filter(*surfaces, *outliers, 0.4);
+  ASSERT_EQ(together->size(), expected->size());
+  for (std::size_t i = 0; i < expected->size(); ++i) {
+    ASSERT_EQ((*together)[i].getVector3fMap(), (*expected)[i].getVector3fMap()) << i;
+    ASSERT_EQ((*together)[i].intensity, (*expected)[i].intensity) << i;
+  }
+  EXPECT_EQ(filter(*surfaces, *outliers, 0.0)->size(), joined.size());  // no filtering
+}
+
 TEST(VoxelMap, HoldsTheVoxelFilterAndFindsItsNearestCentroids) {
   const CloudPtr cloud = random_cloud(20000, 3);
   VoxelMap map(0.4, 1.1);

@@ -96,9 +96,8 @@ void LidarMapping::add_keyframe(const FeatureSet& features, double stamp) {
   keyframe.stamp = stamp;
   keyframe.pose = pose_;
   keyframe.corners = keyframe_filter_(*features.less_sharp, params_.corner_voxel);
-  Cloud surfaces = *features.less_flat;
-  surfaces += *features.outliers;
-  keyframe.surfaces = keyframe_filter_(surfaces, params_.surface_voxel);
+  keyframe.surfaces =
+      keyframe_filter_(*features.less_flat, *features.outliers, params_.surface_voxel);
   keyframe.outliers = features.outliers;
   graph_.add_keyframe(keyframe);
   keyframes_.push_back(std::move(keyframe));
@@ -125,9 +124,8 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
     local_map_.update(keyframes_, pose.translation());
     out.times.add("local_map", watch.lap_ms());
     const CloudPtr corners = scan_filter_(*features.less_sharp, params_.scan_corner_voxel);
-    Cloud surface_points = *features.less_flat;
-    surface_points += *features.outliers;
-    const CloudPtr surfaces = scan_filter_(surface_points, params_.scan_surface_voxel);
+    const CloudPtr surfaces =
+        scan_filter_(*features.less_flat, *features.outliers, params_.scan_surface_voxel);
     out.match = matcher_.match(*corners, *surfaces, local_map_, pose, prior);
     pose = out.match.pose;
     out.times.add("mapping", watch.lap_ms());

@@ -33,9 +33,18 @@ CloudPtr VoxelSums::centroids() const {
 }
 
 CloudPtr VoxelFilter::operator()(const Cloud& cloud, double leaf) {
-  if (leaf <= 0.0 || cloud.empty()) return CloudPtr(new Cloud(cloud));
+  return (*this)(cloud, Cloud(), leaf);
+}
+
+CloudPtr VoxelFilter::operator()(const Cloud& cloud, const Cloud& more, double leaf) {
+  if (leaf <= 0.0 || (cloud.empty() && more.empty())) {
+    CloudPtr joined(new Cloud(cloud));
+    *joined += more;
+    return joined;
+  }
   sums_.reset(leaf);
   sums_.add(cloud);
+  sums_.add(more);
   return sums_.centroids();
 }
 

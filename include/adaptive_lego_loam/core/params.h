@@ -166,7 +166,7 @@ struct LoopClosureParams {
   int map_points_per_scan = 20000;    // keyframe points placed into the candidate's map
   int icp_iterations_per_scan = 2;    // ICP iterations (the final fitness counts as one)
   int graph_iterations_per_scan = 1;  // pose-graph solver iterations, once the loop is accepted
-  // A solver iteration costs about 11 us per node: past this many keyframes the loop is optimised
+  // A solver iteration costs about 12 us per node: past this many keyframes the loop is optimised
   // over a subset of them (see reduce_graph), so that a long run's iteration stays bounded.
   int graph_max_nodes = 200;
   // Pose-graph weights (1-sigma errors): of the odometry between consecutive keyframes and of a

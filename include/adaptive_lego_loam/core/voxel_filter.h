@@ -35,6 +35,8 @@ class VoxelFilter {
  public:
   // Voxel-filtered copy of `cloud` (no filtering when leaf <= 0).
   CloudPtr operator()(const Cloud& cloud, double leaf);
+  // The same of both clouds together, without joining them first.
+  CloudPtr operator()(const Cloud& cloud, const Cloud& more, double leaf);
 
  private:
   VoxelSums sums_;
