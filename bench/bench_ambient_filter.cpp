@@ -6,9 +6,9 @@
 
 #include <climits>
 
-#include "adaptive_lego_loam/core/ambient_filter.h"
-#include "adaptive_lego_loam/core/degeneration_kdtree.h"
-#include "adaptive_lego_loam/core/skeleton.h"
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/ambient/kdtree_normals.h"
+#include "adaptive_lego_loam/core/ambient/skeleton.h"
 #include "bench_data.h"
 
 using namespace adaptive_lego_loam;

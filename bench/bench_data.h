@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "adaptive_lego_loam/core/params.h"
-#include "adaptive_lego_loam/core/scan.h"
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/common/scan.h"
 #include "adaptive_lego_loam/io/scan_files.h"
 
 namespace adaptive_lego_loam::bench {

@@ -3,11 +3,11 @@
 
 #include <benchmark/benchmark.h>
 
-#include "adaptive_lego_loam/core/depth_clustering.h"
-#include "adaptive_lego_loam/core/ground.h"
-#include "adaptive_lego_loam/core/params.h"
-#include "adaptive_lego_loam/core/range_image.h"
-#include "adaptive_lego_loam/core/segmentation.h"
+#include "adaptive_lego_loam/core/clustering/depth_clustering.h"
+#include "adaptive_lego_loam/core/clustering/segmenter.h"
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/projection/ground.h"
+#include "adaptive_lego_loam/core/projection/range_image.h"
 #include "bench_data.h"
 
 using namespace adaptive_lego_loam;

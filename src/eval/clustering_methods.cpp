@@ -8,13 +8,13 @@
 #include <limits>
 #include <stdexcept>
 
-#include "adaptive_lego_loam/core/ambient_filter.h"
-#include "adaptive_lego_loam/core/dbscan.h"
-#include "adaptive_lego_loam/core/depth_clustering.h"
-#include "adaptive_lego_loam/core/euclidean_clustering.h"
-#include "adaptive_lego_loam/core/range_image.h"
-#include "adaptive_lego_loam/core/run_clustering.h"
-#include "adaptive_lego_loam/core/timing.h"
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/clustering/dbscan.h"
+#include "adaptive_lego_loam/core/clustering/depth_clustering.h"
+#include "adaptive_lego_loam/core/clustering/euclidean_clustering.h"
+#include "adaptive_lego_loam/core/clustering/run_clustering.h"
+#include "adaptive_lego_loam/core/common/timing.h"
+#include "adaptive_lego_loam/core/projection/range_image.h"
 #include "adaptive_lego_loam/eval/clustering_benchmark.h"
 
 namespace adaptive_lego_loam {

@@ -7,7 +7,7 @@
 
 #include <optional>
 
-#include "adaptive_lego_loam/core/lidar_odometry.h"
+#include "adaptive_lego_loam/core/odometry/lidar_odometry.h"
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/node_config.h"
 #include "adaptive_lego_loam/ros/node_logging.h"
@@ -25,12 +25,11 @@ class FeatureAssociation {
  public:
   FeatureAssociation(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config)
       : odometry_(config.sensor, config.features, config.odometry),
-        motion_from_mapping_(config.odometry.motion_from_mapping && config.mapping.enabled),
         frames_(ros_bridge::load_frame_names(private_nh)),
-        matcher_({"segmented_cloud", "segmented_cloud_info", "outlier_cloud"},
-                 private_nh.param("max_pending_scans", 10)),
-        pairing_log_(private_nh.param("warning_period", 5.0)),
-        bad_input_log_(private_nh.param("warning_period", 5.0)),
+        pairing_(
+            "feature_association", {"segmented_cloud", "segmented_cloud_info", "outlier_cloud"},
+            private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
+        warn_("feature_association", private_nh.param("warning_period", 5.0)),
         summary_("feature_association", private_nh.param("summary_period", 10.0)) {
     const int queue = private_nh.param("queue_size", 5);
     corner_pub_ = nh.advertise<sensor_msgs::PointCloud2>("laser_cloud_corner_last", queue);
@@ -42,7 +41,7 @@ class FeatureAssociation {
     cloud_sub_ = nh.subscribe("segmented_cloud", queue, &FeatureAssociation::on_cloud, this);
     info_sub_ = nh.subscribe("segmented_cloud_info", queue, &FeatureAssociation::on_info, this);
     outlier_sub_ = nh.subscribe("outlier_cloud", queue, &FeatureAssociation::on_outliers, this);
-    if (motion_from_mapping_) {
+    if (uses_mapped_motion(config.odometry, config.mapping)) {
       mapped_sub_ = nh.subscribe("aft_mapped_to_init", queue, &FeatureAssociation::on_mapped, this);
     }
   }
@@ -59,27 +58,14 @@ class FeatureAssociation {
   // was mapped); a scan that arrives first uses the odometry's own motion.
   void on_mapped(const nav_msgs::OdometryConstPtr& msg) {
     try {
-      const Eigen::Isometry3d pose =
-          ros_bridge::pose_from_ros(msg->pose.pose, mapped_sub_.getTopic());
-      if (last_mapped_pose_) odometry_.use_mapped_motion(last_mapped_pose_->inverse() * pose);
-      last_mapped_pose_ = pose;
+      odometry_.use_mapped_pose(ros_bridge::pose_from_ros(msg->pose.pose, mapped_sub_.getTopic()));
     } catch (const std::exception& e) {
-      if (bad_input_log_.ready()) {
-        ROS_WARN("feature_association: mapped pose ignored: %s%s", e.what(),
-                 bad_input_log_.suppressed_note().c_str());
-      }
+      warn_(std::string("mapped pose ignored: ") + e.what());
     }
   }
 
   void add(Slot slot, const std_msgs::Header& header, ros_bridge::StampMatcher::Message msg) {
-    const auto group = matcher_.add(slot, header.stamp, std::move(msg));
-    for (const auto& dropped : matcher_.take_dropped()) {
-      if (pairing_log_.ready()) {
-        ROS_WARN("feature_association: %s%s", dropped.describe().c_str(),
-                 pairing_log_.suppressed_note().c_str());
-      }
-    }
-    if (group) process(*group);
+    if (const auto group = pairing_.add(slot, header.stamp, std::move(msg))) process(*group);
   }
 
   void process(const ros_bridge::StampMatcher::Group& group) {
@@ -91,10 +77,7 @@ class FeatureAssociation {
           topics());
       odometry_.process(received.cloud, received.has_time, out_);
     } catch (const std::exception& e) {
-      if (bad_input_log_.ready()) {
-        ROS_WARN("feature_association: scan dropped: %s%s", e.what(),
-                 bad_input_log_.suppressed_note().c_str());
-      }
+      warn_(std::string("scan dropped: ") + e.what());
       return;
     }
     std_msgs::Header header = cloud->header;
@@ -128,12 +111,10 @@ class FeatureAssociation {
   }
 
   LidarOdometry odometry_;
-  bool motion_from_mapping_;
-  std::optional<Eigen::Isometry3d> last_mapped_pose_;
   OdometryOutput out_;
   ros_bridge::FrameNames frames_;
-  ros_bridge::StampMatcher matcher_;
-  ros_bridge::Throttle pairing_log_, bad_input_log_;
+  ros_bridge::ScanPairing pairing_;
+  ros_bridge::ThrottledWarning warn_;
   ros_bridge::StageSummary summary_;
   ros::Subscriber cloud_sub_, info_sub_, outlier_sub_, mapped_sub_;
   ros::Publisher corner_pub_, surface_pub_, outlier_pub_, odometry_pub_, sharp_pub_, flat_pub_;

@@ -6,7 +6,7 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "adaptive_lego_loam/core/ambient_filter.h"
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
 #include "adaptive_lego_loam/ros/cloud_conversions.h"
 #include "adaptive_lego_loam/ros/degeneration_conversions.h"
 #include "adaptive_lego_loam/ros/node_config.h"
@@ -22,7 +22,7 @@ class ImageProjection {
   ImageProjection(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config)
       : filter_(config),
         frames_(ros_bridge::load_frame_names(private_nh)),
-        bad_scan_log_(private_nh.param("warning_period", 5.0)),
+        warn_("image_projection", private_nh.param("warning_period", 5.0)),
         summary_("image_projection", private_nh.param("summary_period", 10.0)) {
     const int queue = private_nh.param("queue_size", 5);
     segmented_pub_ = nh.advertise<sensor_msgs::PointCloud2>("segmented_cloud", queue);
@@ -76,12 +76,7 @@ class ImageProjection {
     return true;
   }
 
-  void drop(const std::string& why) {
-    if (bad_scan_log_.ready()) {
-      ROS_WARN("image_projection: scan dropped: %s%s", why.c_str(),
-               bad_scan_log_.suppressed_note().c_str());
-    }
-  }
+  void drop(const std::string& why) { warn_("scan dropped: " + why); }
 
   void publish(const std_msgs::Header& header) {
     const SegmentationResult& segmentation = filtered_.segmentation;
@@ -110,7 +105,7 @@ class ImageProjection {
   AmbientFilter filter_;
   AmbientFilterResult filtered_;
   ros_bridge::FrameNames frames_;
-  ros_bridge::Throttle bad_scan_log_;
+  ros_bridge::ThrottledWarning warn_;
   ros_bridge::StageSummary summary_;
   ros::Subscriber scan_sub_;
   ros::Publisher segmented_pub_, info_pub_, outlier_pub_, degeneration_pub_;

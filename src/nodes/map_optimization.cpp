@@ -9,7 +9,7 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <tf2_ros/transform_broadcaster.h>
 
-#include "adaptive_lego_loam/core/lidar_mapping.h"
+#include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
 #include "adaptive_lego_loam/ros/degeneration_conversions.h"
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/node_config.h"
@@ -34,14 +34,14 @@ class MapOptimization {
  public:
   MapOptimization(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config)
       : params_(config.mapping),
-        mapping_(config.mapping, config.loop_closure),
+        mapping_(config),
         uses_prior_(config.mapping.weak_direction_prior > 0.0),
-        first_sweep_raw_(!config.sensor.deskewed),
         frames_(ros_bridge::load_frame_names(private_nh)),
-        matcher_(slot_names(uses_prior_), private_nh.param("max_pending_scans", 10)),
+        pairing_("map_optimization", slot_names(uses_prior_),
+                 private_nh.param("max_pending_scans", 10),
+                 private_nh.param("warning_period", 5.0)),
         surround_throttle_(private_nh.param("surround_period", 1.0)),
-        pairing_log_(private_nh.param("warning_period", 5.0)),
-        bad_input_log_(private_nh.param("warning_period", 5.0)),
+        warn_("map_optimization", private_nh.param("warning_period", 5.0)),
         summary_("map_optimization", private_nh.param("summary_period", 10.0)) {
     const int queue = private_nh.param("queue_size", 5);
     mapped_pub_ = nh.advertise<nav_msgs::Odometry>("aft_mapped_to_init", queue);
@@ -78,26 +78,17 @@ class MapOptimization {
   }
 
   void add(Slot slot, const std_msgs::Header& header, ros_bridge::StampMatcher::Message msg) {
-    const auto group = matcher_.add(slot, header.stamp, std::move(msg));
-    for (const auto& dropped : matcher_.take_dropped()) {
-      if (pairing_log_.ready()) {
-        ROS_WARN("map_optimization: %s%s", dropped.describe().c_str(),
-                 pairing_log_.suppressed_note().c_str());
-      }
-    }
-    if (group) process(*group);
+    if (const auto group = pairing_.add(slot, header.stamp, std::move(msg))) process(*group);
   }
 
   void process(const ros_bridge::StampMatcher::Group& group) {
     const auto odometry = group.get<nav_msgs::Odometry>(kOdometry);
     try {
-      FeatureSet features = ros_bridge::mapping_features_from_ros(
+      const FeatureSet features = ros_bridge::mapping_features_from_ros(
           *group.get<sensor_msgs::PointCloud2>(kCorners),
           *group.get<sensor_msgs::PointCloud2>(kSurfaces),
           *group.get<sensor_msgs::PointCloud2>(kOutliers),
           {topic(kCorners), topic(kSurfaces), topic(kOutliers)});
-      // As LidarOdometry marks it offline: the first sweep of a sensor that needs de-skewing.
-      features.raw_sweep = first_sweep_raw_ && stamps_.empty();
       const Eigen::Isometry3d odometry_pose =
           ros_bridge::pose_from_ros(odometry->pose.pose, topic(kOdometry));
       std::optional<WeakDirectionPrior> prior;
@@ -110,10 +101,7 @@ class MapOptimization {
       stamps_.push_back(group.stamp);
       publish(group.stamp);
     } catch (const std::exception& e) {
-      if (bad_input_log_.ready()) {
-        ROS_WARN("map_optimization: scan dropped: %s%s", e.what(),
-                 bad_input_log_.suppressed_note().c_str());
-      }
+      warn_(std::string("scan dropped: ") + e.what());
       return;
     }
     ROS_DEBUG("map_optimization: scan at %.3f: %s%s", group.stamp.toSec(),
@@ -160,13 +148,12 @@ class MapOptimization {
   LidarMapping mapping_;
   MappingOutput out_;
   bool uses_prior_;
-  bool first_sweep_raw_;
   ros_bridge::FrameNames frames_;
   std::string sensor_frame_;
   std::vector<ros::Time> stamps_;  // of every mapped scan, for the path
-  ros_bridge::StampMatcher matcher_;
+  ros_bridge::ScanPairing pairing_;
   ros_bridge::Throttle surround_throttle_;  // the local map is large: at most once a period
-  ros_bridge::Throttle pairing_log_, bad_input_log_;
+  ros_bridge::ThrottledWarning warn_;
   ros_bridge::StageSummary summary_;
   std::vector<ros::Subscriber> subscriptions_;  // in Slot order
   ros::Publisher mapped_pub_, surround_pub_, keyframe_pub_, path_pub_;

@@ -13,7 +13,7 @@
 
 #include <optional>
 
-#include "adaptive_lego_loam/core/lidar_mapping.h"
+#include "adaptive_lego_loam/core/mapping/transform_fusion.h"
 #include "adaptive_lego_loam/ros/node_config.h"
 #include "adaptive_lego_loam/ros/node_logging.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
@@ -29,10 +29,10 @@ class TransformFusionNode {
  public:
   TransformFusionNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config&)
       : frames_(ros_bridge::load_frame_names(private_nh)),
-        matcher_({"laser_odom_to_init", "aft_mapped_to_init"},
-                 private_nh.param("max_pending_scans", 50)),
-        pairing_log_(private_nh.param("warning_period", 5.0)),
-        bad_input_log_(private_nh.param("warning_period", 5.0)) {
+        pairing_("transform_fusion", {"laser_odom_to_init", "aft_mapped_to_init"},
+                 private_nh.param("max_pending_scans", 50),
+                 private_nh.param("warning_period", 5.0)),
+        warn_("transform_fusion", private_nh.param("warning_period", 5.0)) {
     const int queue = private_nh.param("queue_size", 5);
     integrated_pub_ = nh.advertise<nav_msgs::Odometry>("integrated_to_init", queue);
     odometry_sub_ =
@@ -47,7 +47,7 @@ class TransformFusionNode {
     try {
       odometry_pose = ros_bridge::pose_from_ros(msg->pose.pose, odometry_sub_.getTopic());
     } catch (const std::exception& e) {
-      warn(bad_input_log_, e.what());
+      warn_(e.what());
       return;
     }
     add(kOdometry, msg->header, msg);
@@ -61,9 +61,7 @@ class TransformFusionNode {
   void on_mapped(const nav_msgs::OdometryConstPtr& msg) { add(kMapped, msg->header, msg); }
 
   void add(Slot slot, const std_msgs::Header& header, ros_bridge::StampMatcher::Message msg) {
-    const auto group = matcher_.add(slot, header.stamp, std::move(msg));
-    for (const auto& dropped : matcher_.take_dropped())
-      warn(pairing_log_, dropped.describe());
+    const auto group = pairing_.add(slot, header.stamp, std::move(msg));
     if (!group) return;
     try {
       fusion_.update_mapping(
@@ -72,7 +70,7 @@ class TransformFusionNode {
           ros_bridge::pose_from_ros(group->get<nav_msgs::Odometry>(kMapped)->pose.pose,
                                     mapped_sub_.getTopic()));
     } catch (const std::exception& e) {
-      warn(bad_input_log_, e.what());
+      warn_(e.what());
     }
   }
 
@@ -98,21 +96,15 @@ class TransformFusionNode {
       sensor_in_base_ =
           tf2::transformToEigen(tf_buffer_.lookupTransform(frames_.base, sensor, ros::Time(0)));
     } catch (const tf2::TransformException& e) {
-      warn(bad_input_log_, "no " + frames_.base + " -> " + sensor + " transform yet: " + e.what());
+      warn_("no " + frames_.base + " -> " + sensor + " transform yet: " + e.what());
     }
     return sensor_in_base_;
   }
 
-  void warn(ros_bridge::Throttle& throttle, const std::string& what) {
-    if (throttle.ready()) {
-      ROS_WARN("transform_fusion: %s%s", what.c_str(), throttle.suppressed_note().c_str());
-    }
-  }
-
   ros_bridge::FrameNames frames_;
   TransformFusion fusion_;
-  ros_bridge::StampMatcher matcher_;
-  ros_bridge::Throttle pairing_log_, bad_input_log_;
+  ros_bridge::ScanPairing pairing_;
+  ros_bridge::ThrottledWarning warn_;
   ros::Subscriber odometry_sub_, mapped_sub_;
   ros::Publisher integrated_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "adaptive_lego_loam/core/pipeline.h"
+#include "adaptive_lego_loam/core/pipeline/pipeline.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 namespace {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "adaptive_lego_loam/core/motion_compensation.h"
+#include "adaptive_lego_loam/core/odometry/deskew.h"
 #include "adaptive_lego_loam/eval/metrics.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"

@@ -1,5 +1,7 @@
 #include "adaptive_lego_loam/ros/node_logging.h"
 
+#include <ros/console.h>
+
 #include <cstdio>
 
 namespace adaptive_lego_loam::ros_bridge {
@@ -22,6 +24,12 @@ bool Throttle::ready(double now_s) {
 std::string Throttle::suppressed_note() const {
   if (refused_before_last_ == 0) return "";
   return " (" + std::to_string(refused_before_last_) + " more since the last report)";
+}
+
+void ThrottledWarning::operator()(const std::string& what) {
+  if (throttle_.ready()) {
+    ROS_WARN("%s: %s%s", node_.c_str(), what.c_str(), throttle_.suppressed_note().c_str());
+  }
 }
 
 void StageSummary::add(const StageTimes& times, double now_s) {

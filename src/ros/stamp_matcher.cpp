@@ -72,4 +72,16 @@ std::vector<StampMatcher::Dropped> StampMatcher::take_dropped() {
   return dropped;
 }
 
+ScanPairing::ScanPairing(const std::string& node, std::vector<std::string> slot_names,
+                         std::size_t max_pending, double warning_period_s)
+    : matcher_(std::move(slot_names), max_pending), warning_(node, warning_period_s) {}
+
+std::optional<StampMatcher::Group> ScanPairing::add(std::size_t slot, const ros::Time& stamp,
+                                                    StampMatcher::Message message) {
+  std::optional<StampMatcher::Group> group = matcher_.add(slot, stamp, std::move(message));
+  for (const StampMatcher::Dropped& dropped : matcher_.take_dropped())
+    warning_(dropped.describe());
+  return group;
+}
+
 }  // namespace adaptive_lego_loam::ros_bridge

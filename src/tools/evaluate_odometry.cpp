@@ -1,5 +1,5 @@
 // Compares an estimated trajectory with ground truth (both KITTI pose files) and prints the KITTI
-// segment errors, the RPE and the ATE of METHOD.md; --json writes the same numbers.
+// segment errors, the RPE and the ATE of docs/METHOD.md; --json writes the same numbers.
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>

@@ -14,7 +14,7 @@
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 
-#include "adaptive_lego_loam/core/params.h"
+#include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/progress.h"

@@ -11,7 +11,7 @@
 #include <map>
 #include <optional>
 
-#include "adaptive_lego_loam/core/pipeline.h"
+#include "adaptive_lego_loam/core/pipeline/pipeline.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/progress.h"

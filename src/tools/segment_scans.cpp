@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include "adaptive_lego_loam/core/params.h"
-#include "adaptive_lego_loam/core/segmentation.h"
+#include "adaptive_lego_loam/core/clustering/segmenter.h"
+#include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/scan_files.h"
 

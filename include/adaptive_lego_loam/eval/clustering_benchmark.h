@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "adaptive_lego_loam/core/scan.h"
+#include "adaptive_lego_loam/core/common/scan.h"
 
 namespace adaptive_lego_loam {
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "adaptive_lego_loam/core/params.h"
-#include "adaptive_lego_loam/core/scan.h"
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/common/scan.h"
 
 namespace adaptive_lego_loam {
 

@@ -1,5 +1,5 @@
 #pragma once
-// Odometry metrics of METHOD.md (section Metrics): RPE per frame, the KITTI segment metric and
+// Odometry metrics of docs/METHOD.md (Metrics): RPE per frame, the KITTI segment metric and
 // ATE after a rigid alignment. P is the estimate, Q the ground truth; both are poses of the same
 // sensor frame in that trajectory's first frame (x_world = pose * x_sensor). Index i of one
 // trajectory is the same scan as index i of the other.

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "adaptive_lego_loam/core/timing.h"
+#include "adaptive_lego_loam/core/common/timing.h"
 
 namespace adaptive_lego_loam {
 

@@ -7,7 +7,7 @@
 // included; the message type on the wire is still adaptive_lego_loam/CloudInfo. Include this
 // header, never the generated one.
 
-#include "adaptive_lego_loam/core/segmentation.h"
+#include "adaptive_lego_loam/core/clustering/segmenter.h"
 
 #define CloudInfo CloudInfoMsg
 #include <adaptive_lego_loam/CloudInfo.h>

@@ -8,9 +8,9 @@
 
 #include <optional>
 
-#include "adaptive_lego_loam/core/ambient_filter.h"
-#include "adaptive_lego_loam/core/mapping.h"
-#include "adaptive_lego_loam/core/params.h"
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/mapping/scan_to_map.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "adaptive_lego_loam/core/cloud.h"
-#include "adaptive_lego_loam/core/features.h"
-#include "adaptive_lego_loam/core/keyframe.h"
-#include "adaptive_lego_loam/core/mapping.h"
+#include "adaptive_lego_loam/core/common/cloud.h"
+#include "adaptive_lego_loam/core/mapping/keyframe.h"
+#include "adaptive_lego_loam/core/mapping/local_map.h"
+#include "adaptive_lego_loam/core/odometry/feature_extraction.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 

@@ -5,9 +5,9 @@
 #include <functional>
 #include <string>
 
-#include "adaptive_lego_loam/core/params.h"
-#include "adaptive_lego_loam/core/range_image.h"
-#include "adaptive_lego_loam/core/scan.h"
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/common/scan.h"
+#include "adaptive_lego_loam/core/projection/range_image.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "adaptive_lego_loam/core/params.h"
+#include "adaptive_lego_loam/core/common/params.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "adaptive_lego_loam/core/timing.h"
+#include "adaptive_lego_loam/core/common/timing.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 
@@ -32,6 +32,19 @@ class Throttle {
   std::optional<double> last_s_;
   int refused_ = 0;
   int refused_before_last_ = 0;
+};
+
+// A warning a node may meet on every scan, e.g. "scan dropped: ...": logged as
+// "<node>: <what>" at most once a period, with how many were held back since the last one.
+class ThrottledWarning {
+ public:
+  ThrottledWarning(std::string node, double period_s)
+      : node_(std::move(node)), throttle_(period_s) {}
+  void operator()(const std::string& what);
+
+ private:
+  std::string node_;
+  Throttle throttle_;
 };
 
 class StageSummary {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "adaptive_lego_loam/core/range_image.h"
-#include "adaptive_lego_loam/core/segmentation.h"
+#include "adaptive_lego_loam/core/clustering/segmenter.h"
+#include "adaptive_lego_loam/core/projection/range_image.h"
 #include "adaptive_lego_loam/ros/cloud_info_msg.h"
 
 namespace adaptive_lego_loam::ros_bridge {

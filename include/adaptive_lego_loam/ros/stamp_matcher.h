@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_lego_loam/ros/node_logging.h"
+
 namespace adaptive_lego_loam::ros_bridge {
 
 class StampMatcher {
@@ -57,6 +59,21 @@ class StampMatcher {
   std::map<ros::Time, std::vector<Message>> pending_;
   std::optional<ros::Time> last_completed_;
   std::vector<Dropped> dropped_;
+};
+
+// The messages of one scan from several topics, for a node downstream of image_projection: grouped
+// by stamp, and the incomplete groups logged as the node's warnings (throttled).
+class ScanPairing {
+ public:
+  ScanPairing(const std::string& node, std::vector<std::string> slot_names, std::size_t max_pending,
+              double warning_period_s);
+  // StampMatcher::add, logging the groups it dropped.
+  std::optional<StampMatcher::Group> add(std::size_t slot, const ros::Time& stamp,
+                                         StampMatcher::Message message);
+
+ private:
+  StampMatcher matcher_;
+  ThrottledWarning warning_;
 };
 
 }  // namespace adaptive_lego_loam::ros_bridge

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "adaptive_lego_loam/core/params.h"
+#include "adaptive_lego_loam/core/common/params.h"
 
 namespace adaptive_lego_loam::sim {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "adaptive_lego_loam/core/params.h"
+#include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/sim/lidar_model.h"
 #include "adaptive_lego_loam/sim/scenario.h"
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "adaptive_lego_loam/core/scan.h"
+#include "adaptive_lego_loam/core/common/scan.h"
 #include "adaptive_lego_loam/sim/lidar_model.h"
 #include "adaptive_lego_loam/sim/random.h"
 #include "adaptive_lego_loam/sim/ray_caster.h"

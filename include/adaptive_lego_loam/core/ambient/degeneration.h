@@ -1,0 +1,29 @@
+#pragma once
+// docs/METHOD.md, steps 7 and 8: the degeneration degree mu from the horizontal parts of the
+// weighted normals, the weakly constrained direction, and the adaptive beta0.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "adaptive_lego_loam/core/ambient/skeleton_normals.h"
+
+namespace adaptive_lego_loam {
+
+struct Degeneration {
+  bool valid = false;  // false when no normal had a horizontal part: mu unknown
+  double mu = 0.0;     // in [0, 1]; 1 = all constraints along one horizontal direction
+  double k = 1.0;      // sum |x'| / sum |y'| (>= 1), infinite when sum |y'| = 0
+  // Unit horizontal direction along which the scan constrains least (sensor frame): the
+  // eigenvector of the smaller eigenvalue of sum v v^T.
+  Eigen::Vector2d weak_direction = Eigen::Vector2d::UnitX();
+  int normals = 0;
+};
+
+// v_i = weight_i * (n_x, n_y); the second-moment matrix sum v v^T (normals have no sign, so not a
+// centred covariance) gives the eigenbasis; k = sum |x'_i| / sum |y'_i|; mu = 1 - 1/k.
+Degeneration degeneration_from_normals(const std::vector<NormalFeature>& normals);
+
+// beta0 = mu (beta0_min - beta0_max) + beta0_max: a degenerate scene gets the lenient threshold.
+double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg);
+
+}  // namespace adaptive_lego_loam

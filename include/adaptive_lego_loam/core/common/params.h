@@ -1,0 +1,213 @@
+#pragma once
+// One params struct per stage, filled from one YAML file per sensor (config/*.yaml).
+// No sensor constant is compiled in: the defaults below only fill keys a file leaves out.
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace adaptive_lego_loam {
+
+// A config value that is missing, malformed or out of range. The message names the file, the
+// key and what was expected.
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class RowSource { kAuto, kRing, kElevation };
+
+struct SensorParams {
+  std::string name = "unnamed";
+  int rows = 16;
+  int columns = 1800;
+  // kAuto: the ring field when the cloud has one, else the elevation angle.
+  RowSource row_source = RowSource::kAuto;
+  // Elevation of each row, ascending (row 0 = lowest beam), degrees. Filled from
+  // beam_angles_deg, or spread evenly over [vertical_min_deg, vertical_max_deg].
+  std::vector<double> beam_angles_deg;
+  // Height of each beam's origin above the sensor origin (m). The HDL-64E's two laser blocks sit
+  // about 0.2 m and 0.12 m above its origin; without this the elevation of a beam drifts with
+  // range by more than the row spacing. Zero when not given.
+  std::vector<double> beam_offsets_m;
+  // ring value -> row, when the driver does not number rings bottom-up; -1 leaves the ring out (a
+  // dead laser, or KITTI's 64 rings thinned to a VLP-16-sized 16). Identity when empty.
+  std::vector<int> ring_to_row;
+  double min_range = 1.0;    // m
+  double max_range = 100.0;  // m
+  double mount_angle_deg = 0.0;
+  int ground_rows = 7;       // rows counted from the bottom that may hold ground
+  double scan_period = 0.1;  // s
+  bool deskewed = false;     // true when the driver already removed motion distortion (KITTI)
+};
+
+// Minimum size for a cluster to be kept, as LeGO-LOAM: at least min_points, or at least
+// min_points_multi_row spanning at least min_rows rows.
+struct ClusterSizeRule {
+  int min_points = 30;
+  int min_points_multi_row = 5;
+  int min_rows = 3;
+};
+
+struct SegmentationParams {
+  double beta0_deg = 60.0;  // LeGO-LOAM's segmentTheta
+  ClusterSizeRule size_rule;
+  double ground_slope_tolerance_deg = 10.0;
+  int ground_downsample = 5;   // keep every n-th ground column in the segmented cloud
+  int outlier_downsample = 5;  // keep every n-th outlier column in the outlier cloud
+};
+
+enum class Beta0Mode { kAdaptive, kFixed };
+
+struct AmbientFilterParams {
+  Beta0Mode mode = Beta0Mode::kAdaptive;
+  double beta0_min_deg = 10.0;    // lenient end: used when mu = 1 (degenerate scene)
+  double beta0_max_deg = 60.0;    // strict end: used when mu = 0, and for the skeleton
+  double fixed_beta0_deg = 60.0;  // used when mode is kFixed
+  // Step 4: adaptive Euclidean clustering on the range image.
+  int euclidean_window = 3;  // w: the window is (2w+1) x (2w+1)
+  double euclidean_gamma = 1.2;
+  double euclidean_fixed_threshold = 0.0;  // m; > 0 turns the adaptive threshold off (baseline)
+  // Step 5: skeleton.
+  int skeleton_euclidean_min_points = 100;  // n_e
+  int skeleton_depth_min_points = 30;       // n_d
+  // Step 6: normals.
+  double normal_sample_ratio = 0.1;  // p
+  int normal_window = 3;
+  double normal_depth_threshold = 1.0;  // depth_0, m
+  int normal_min_neighbors = 5;         // t_0
+  uint32_t seed = 1;
+  // Step 8: exponential smoothing of mu over scans; 0 = none.
+  double mu_smoothing = 0.0;
+};
+
+// LeGO-LOAM's feature extraction on the segmented cloud.
+struct FeatureParams {
+  int sectors = 6;  // each row is split into this many sectors
+  int sharp_per_sector = 2;
+  int less_sharp_per_sector = 20;
+  int flat_per_sector = 4;
+  double edge_threshold = 0.1;       // curvature above: edge candidate
+  double surface_threshold = 0.1;    // curvature below: surface candidate
+  double occlusion_threshold = 0.3;  // m: range step that marks an occluded side
+  double parallel_threshold = 0.02;  // relative range step on both sides: beam near parallel
+  double less_flat_voxel = 0.2;      // m: voxel filter of the less-flat surfaces per row
+};
+
+enum class OdometryMode { kTwoStep, kJoint };
+
+// Scan-to-scan odometry (LeGO-LOAM's featureAssociation).
+struct OdometryParams {
+  OdometryMode mode = OdometryMode::kJoint;
+  int max_iterations = 8;           // correspondence searches per scan
+  int solver_iterations = 5;        // Ceres iterations per search
+  double max_match_distance = 5.0;  // m
+  double huber_loss = 0.1;          // m
+  bool constant_velocity = true;    // initial guess from the previous motion
+  // De-skew and predict with the previous motion as mapping refined it, when mapping runs.
+  bool motion_from_mapping = true;
+};
+
+// Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).
+struct MappingParams {
+  bool enabled = true;
+  int max_iterations = 10;
+  int solver_iterations = 4;
+  // m: a scan point that moved less than this since its neighbour search keeps its line or plane
+  // (0: search again whenever the neighbours may have changed, the same result as always
+  // searching).
+  double keep_correspondence_distance = 0.0;
+  double huber_loss = 0.1;           // m
+  double corner_voxel = 0.2;         // m, local map and current corners
+  double surface_voxel = 0.4;        // m, local map surfaces
+  double scan_corner_voxel = 0.2;    // m, the current scan's edges matched against the map
+  double scan_surface_voxel = 0.4;   // m, the current scan's surfaces matched against the map
+  double keyframe_distance = 1.0;    // m between keyframes ...
+  double keyframe_angle_deg = 10.0;  // ... or this much rotation
+  double local_map_radius = 50.0;    // m: keyframes within this distance form the local map
+  int local_map_keyframes = 40;      // at most this many, nearest in time first
+  // The newest keyframes left out of the local map: matched against its own last few metres, a
+  // VLP-16 scan inherits their drift (docs/METHOD.md, Mapping).
+  int local_map_lag_keyframes = 0;
+  double degeneracy_eigenvalue = 100;  // LOAM's threshold on the normal equations' eigenvalues
+  // Weight of a prior pulling the translation along the ambient filter's weak direction toward
+  // the odometry's prediction, times mu; 0 turns it off.
+  double weak_direction_prior = 0.0;
+  // The guess for scan-to-map: the odometry's motion, unless it differs from the previous scan's
+  // mapped motion by more than this (m per scan) or max_motion_change_deg; then that motion
+  // (constant velocity). 0 = off. A vehicle cannot change its speed by 0.3 m per scan at 10 Hz.
+  double max_motion_change = 0.0;
+  double max_motion_change_deg = 0.0;
+};
+
+// Robust loss on a pose-graph edge's whitened residual norm |r| (in sigmas). kHuber: quadratic up
+// to |r| = scale, linear beyond. kCauchy: scale^2 * log(1 + |r|^2 / scale^2), whose pull on the
+// poses fades once |r| is well beyond scale.
+enum class RobustLoss { kNone, kHuber, kCauchy };
+
+// Loop detection as LeGO-LOAM (ICP of the newest keyframe against an older one's neighbourhood)
+// and the pose-graph weights used when a loop is closed.
+struct LoopClosureParams {
+  bool enabled = true;
+  double search_radius = 7.0;        // m: candidates lie this close to the current keyframe
+  double min_time_gap = 30.0;        // s: and are at least this much older
+  int neighbourhood_keyframes = 25;  // the candidate's map: it and this many on either side
+  double fitness_threshold = 0.3;    // m^2: accepted below this ICP fitness (mean squared distance)
+  double voxel_size = 0.4;           // m: leaf of the candidate's map; 0 = no filter
+  double icp_max_correspondence_distance = 100.0;  // m
+  int icp_max_iterations = 30;
+  // ICP aligns every n-th point of the newest keyframe, at most this many: bounds its time.
+  int icp_max_points = 2000;
+  // A loop closure is spread over the scans from its keyframe on, so that no scan pays for all of
+  // it; each scan does the next of these pieces (or the voxel filter, or the KD-tree). The
+  // detection does not depend on their size.
+  int map_points_per_scan = 20000;    // keyframe points placed into the candidate's map
+  int icp_iterations_per_scan = 2;    // ICP iterations (the final fitness counts as one)
+  int graph_iterations_per_scan = 1;  // pose-graph solver iterations, once the loop is accepted
+  // A solver iteration's cost grows with the nodes: past this many keyframes the loop is
+  // optimised over a subset of them (see reduce_graph), so that a long run's iteration stays
+  // bounded.
+  int graph_max_nodes = 200;
+  // Pose-graph weights (1-sigma errors): of the odometry between consecutive keyframes and of a
+  // loop measured by ICP.
+  double odometry_sigma_translation = 0.05;  // m
+  double odometry_sigma_rotation_deg = 0.5;
+  double loop_sigma_translation = 0.2;  // m
+  double loop_sigma_rotation_deg = 1.0;
+  // On loop edges. With the Cauchy loss a loop that disagrees with the odometry by more than about
+  // 2 * robust_loss_scale accumulated odometry sigmas (Mahalanobis) is mostly ignored; below
+  // that it closes fully.
+  RobustLoss robust_loss = RobustLoss::kCauchy;
+  double robust_loss_scale = 2.0;  // sigmas
+};
+
+// Settings of the clustering benchmark tool (segmentation_bench), the same for every method.
+struct ClusteringBenchmarkParams {
+  // Clusters with fewer points are not output. 1 counts every cluster: the benchmark's score
+  // (best IoU per labelled box) can only fall when clusters are left out.
+  int min_cluster_points = 1;
+};
+
+struct Config {
+  std::string source;  // file the config came from, for messages
+  SensorParams sensor;
+  SegmentationParams segmentation;
+  AmbientFilterParams ambient;
+  FeatureParams features;
+  OdometryParams odometry;
+  MappingParams mapping;
+  LoopClosureParams loop_closure;
+  ClusteringBenchmarkParams clustering_benchmark;
+};
+
+// Loads and checks a config file. Throws ConfigError naming the file, the key and the allowed
+// range on the first bad value; unknown keys are errors too (a typo must not pass silently).
+Config load_config(const std::string& path);
+// The same from YAML text; `source` names it in messages.
+Config parse_config(const std::string& yaml_text, const std::string& source);
+
+// Cross-field checks shared by the loader and code that builds params by hand.
+void validate(const SensorParams& sensor, const std::string& source);
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,44 @@
+#pragma once
+// Scan-to-map matching (LeGO-LOAM's mapOptimization) with Ceres: the scan's edges against lines
+// and its surfaces against planes fitted to the five nearest points of the local map. Degenerate
+// directions of the normal equations (LOAM's eigenvalue test) receive no update.
+
+#include <Eigen/Geometry>
+#include <optional>
+
+#include "adaptive_lego_loam/core/common/cloud.h"
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/mapping/local_map.h"
+
+namespace adaptive_lego_loam {
+
+struct MapMatchResult {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  int edge_matches = 0;
+  int plane_matches = 0;
+  int iterations = 0;
+  int degenerate_directions = 0;     // of the 6, held at the guess
+  double smallest_eigenvalue = 0.0;  // of the normal equations at the first iteration
+  bool matched = false;              // false with too few correspondences: pose = guess
+};
+
+// A soft constraint along the direction the scan constrains least (the ambient filter's weak
+// direction, sensor frame), pulling the translation toward the prediction.
+struct WeakDirectionPrior {
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  double weight = 0.0;
+};
+
+class ScanToMapMatcher {
+ public:
+  explicit ScanToMapMatcher(const MappingParams& params);
+  // `corners` and `surfaces` in the sensor frame; `guess` the sensor pose in the map.
+  MapMatchResult match(const Cloud& corners, const Cloud& surfaces, const LocalMap& map,
+                       const Eigen::Isometry3d& guess,
+                       const std::optional<WeakDirectionPrior>& prior = std::nullopt) const;
+
+ private:
+  MappingParams params_;
+};
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,55 @@
+#pragma once
+// LeGO-LOAM's feature extraction on the segmented cloud: smoothness over the row neighbours,
+// occluded and near-parallel points rejected, each row split into sectors, sharp/less-sharp edges
+// and flat/less-flat surfaces picked per sector, ground points only as surfaces.
+
+#include <cstdint>
+#include <vector>
+
+#include "adaptive_lego_loam/core/clustering/segmenter.h"
+#include "adaptive_lego_loam/core/common/cloud.h"
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/spatial/voxel_filter.h"
+
+namespace adaptive_lego_loam {
+
+// Feature clouds in the sensor frame; each point's intensity holds its range-image row.
+struct FeatureSet {
+  CloudPtr sharp{new Cloud};
+  CloudPtr less_sharp{new Cloud};  // includes the sharp ones
+  CloudPtr flat{new Cloud};
+  CloudPtr less_flat{new Cloud};  // includes the flat ones, voxel-filtered per row
+  CloudPtr outliers{new Cloud};   // LeGO-LOAM's outlier cloud: dropped clusters, for mapping
+  // Replaces every cloud by a new empty one (holders of the old ones keep them intact).
+  void clear();
+};
+
+class FeatureExtractor {
+ public:
+  explicit FeatureExtractor(const FeatureParams& params);
+  // `points` and `outliers` are the segmented cloud's points and outliers, possibly de-skewed,
+  // in its order.
+  void extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,
+               const std::vector<ScanPoint>& outliers, FeatureSet& out);
+
+ private:
+  void compute_smoothness(const SegmentedCloud& cloud);
+  void mark_unreliable(const SegmentedCloud& cloud);
+  void pick_row(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points, int row,
+                FeatureSet& out);
+  void block_neighbours(const SegmentedCloud& cloud, int index);
+
+  FeatureParams params_;
+  struct Smoothness {
+    float value;
+    int32_t index;
+  };
+  std::vector<Smoothness> smoothness_;
+  std::vector<float> curvature_;
+  std::vector<uint8_t> picked_;  // no longer available for selection
+  std::vector<int8_t> label_;    // 2 sharp, 1 less sharp, -1 flat, 0 none
+  Cloud row_less_flat_;
+  VoxelFilter voxel_filter_;
+};
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,54 @@
+#pragma once
+// LeGO-LOAM's featureAssociation on the core: de-skewing of the segmented cloud, feature
+// extraction and scan-to-scan odometry. Fed by the ambient filter's segmented cloud; feeds
+// LidarMapping. The pipeline and the feature_association node run this same class.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+#include "adaptive_lego_loam/core/clustering/segmenter.h"
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/common/timing.h"
+#include "adaptive_lego_loam/core/odometry/feature_extraction.h"
+#include "adaptive_lego_loam/core/odometry/scan_to_scan.h"
+
+namespace adaptive_lego_loam {
+
+struct OdometryOutput {
+  FeatureSet features;  // de-skewed to the end of the sweep
+  OdometryResult odometry;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // in the odometry frame
+  bool deskewed_by_time_field = false;
+  StageTimes times;
+};
+
+class LidarOdometry {
+ public:
+  LidarOdometry(const SensorParams& sensor, const FeatureParams& features,
+                const OdometryParams& odometry);
+  // `has_time`: whether the cloud's points carry their time in the sweep.
+  void process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out);
+  // The last scan's pose as mapping refined it (map frame). From the second such pose on, the
+  // motion between the last two replaces the odometry's own estimate as the constant-velocity
+  // model that de-skews and predicts the next scan: mapping's is far better on 16-beam sensors.
+  // Call it only when uses_mapped_motion().
+  void use_mapped_pose(const Eigen::Isometry3d& pose);
+
+ private:
+  SensorParams sensor_;
+  OdometryParams params_;
+  FeatureExtractor extractor_;
+  ScanToScanOdometry registration_;
+  std::vector<ScanPoint> points_, outliers_;
+  std::vector<float> fractions_;
+  bool first_ = true;
+  Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
+  std::optional<Eigen::Isometry3d> last_mapped_pose_;
+};
+
+// Whether the odometry takes its motion model from mapping (LidarOdometry::use_mapped_pose).
+bool uses_mapped_motion(const OdometryParams& odometry, const MappingParams& mapping);
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,50 @@
+#pragma once
+// Scan-to-scan odometry (LeGO-LOAM's featureAssociation) with Ceres: the current scan's sharp
+// edges against lines of the previous scan's edges, its flat (ground) surfaces against planes of
+// the previous scan's surfaces. Two solves, selectable: LeGO-LOAM's two steps (planes fix z, roll
+// and pitch; then edges fix x, y and yaw) or one joint 6-DoF solve.
+
+#include <Eigen/Geometry>
+
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/odometry/feature_extraction.h"
+#include "adaptive_lego_loam/core/spatial/kdtree.h"
+
+namespace adaptive_lego_loam {
+
+struct Correspondences;       // core/residuals.h
+enum class MatchKinds : int;  // core/residuals.h
+
+struct OdometryResult {
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // current scan in previous' frame
+  int edge_matches = 0;
+  int plane_matches = 0;
+  int iterations = 0;
+  bool registered = false;  // false for the first scan or when too few matches were found
+};
+
+class ScanToScanOdometry {
+ public:
+  explicit ScanToScanOdometry(const OdometryParams& params);
+  // Registers `current` against the previous scan's features, starting from `guess` (the motion
+  // from the previous scan to this one); then keeps `current` as the previous scan.
+  OdometryResult register_scan(const FeatureSet& current, const Eigen::Isometry3d& guess);
+  void reset();
+
+ private:
+  void find_edge_matches(const Cloud& sharp, const Eigen::Isometry3d& pose,
+                         Correspondences& matches) const;
+  void find_plane_matches(const Cloud& flat, const Eigen::Isometry3d& pose,
+                          Correspondences& matches) const;
+  // One Ceres solve over the given correspondence kinds with the listed entries of the Euler
+  // 6-vector held fixed.
+  void solve(const Correspondences& matches, MatchKinds kinds,
+             const std::vector<int>& fixed_entries, double* pose) const;
+
+  OdometryParams params_;
+  bool first_pair_ = true;
+  CloudPtr previous_corners_, previous_surfaces_;
+  PointKdTree corner_tree_, surface_tree_;
+};
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,90 @@
+#pragma once
+// LeGO-LOAM's mapOptimization on the core: every scan matched against a local map of the
+// surrounding keyframes, keyframes by distance and angle, and the map frame's poses. The
+// pipeline and the map_optimization node run this same class.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/common/timing.h"
+#include "adaptive_lego_loam/core/loop_closure/keyframe_graph.h"
+#include "adaptive_lego_loam/core/mapping/keyframe.h"
+#include "adaptive_lego_loam/core/mapping/local_map.h"
+#include "adaptive_lego_loam/core/mapping/scan_to_map.h"
+#include "adaptive_lego_loam/core/mapping/transform_fusion.h"
+#include "adaptive_lego_loam/core/odometry/feature_extraction.h"
+#include "adaptive_lego_loam/core/spatial/voxel_filter.h"
+
+namespace adaptive_lego_loam {
+
+struct MappingOutput {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // sensor in the map frame
+  MapMatchResult match;
+  bool keyframe = false;
+  bool motion_gated = false;  // the odometry's motion was implausible: the guess kept the velocity
+  // When a loop-closure attempt finished on this scan (it started at an earlier keyframe and ran
+  // a bounded piece a scan since; an accepted loop has moved the poses on this scan).
+  std::optional<LoopDetection> loop;
+  StageTimes times;
+};
+
+class LidarMapping {
+ public:
+  explicit LidarMapping(const Config& config);
+  // `odometry_pose`: the scan's pose in the odometry frame; the map pose is predicted from the
+  // odometry's motion since the previous scan, then refined against the local map.
+  void process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose, double stamp,
+               const std::optional<WeakDirectionPrior>& prior, MappingOutput& out);
+
+  const std::vector<Keyframe>& keyframes() const { return keyframes_; }
+  const LocalMap& local_map() const { return local_map_; }
+  const TransformFusion& fusion() const { return fusion_; }
+  int loops_closed() const { return loops_closed_; }
+  bool loop_closure_running() const { return loop_job_ || loop_optimization_; }
+  // Finishes the loop-closure attempt in progress at once (at the end of the input, where no scan
+  // is left to spread it over); returns it, if there was one.
+  std::optional<LoopDetection> finish_loop_closure();
+  // Every scan's pose, re-derived from its keyframe so that later keyframe corrections apply.
+  std::vector<Eigen::Isometry3d> trajectory() const;
+
+ private:
+  bool motion_is_plausible(const Eigen::Isometry3d& motion) const;
+  bool needs_keyframe() const;
+  void add_keyframe(const FeatureSet& features, double stamp);
+  // A loop-closure attempt starts with a new keyframe that has a loop candidate, at most once a
+  // second of data (LeGO-LOAM's rate) and one at a time; every scan then runs one bounded step of
+  // it: the detection's, then, when accepted, the pose graph's. Returns the attempt on the scan
+  // it finished.
+  std::optional<LoopDetection> advance_loop_closure(double stamp, bool new_keyframe);
+  void start_loop_closure(double stamp);
+  // Applies the finished optimisation: keyframes, the running pose and the local map move.
+  void close_loop();
+
+  MappingParams params_;
+  LoopClosureParams loop_params_;
+  // The first sweep of a sensor whose driver does not de-skew cannot be de-skewed (no motion is
+  // known yet): a keyframe of it would bend the map for as long as it stays in it.
+  bool first_sweep_distorted_;
+  KeyframeGraph graph_;
+  std::optional<LoopDetectionJob> loop_job_;
+  std::optional<LoopOptimization> loop_optimization_;
+  double last_loop_attempt_ = -1e18;
+  int loops_closed_ = 0;
+  LocalMap local_map_;
+  ScanToMapMatcher matcher_;
+  TransformFusion fusion_;
+  // Their tables sized by what each filters: the scan's few coarse voxels, a keyframe's many.
+  VoxelFilter scan_filter_, keyframe_filter_;
+  std::vector<Keyframe> keyframes_;
+  int scans_ = 0;
+  std::optional<Eigen::Isometry3d> last_odometry_pose_;
+  std::optional<Eigen::Isometry3d> last_mapped_motion_;
+  Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
+  // Per scan: the keyframe it hangs from and its pose relative to that keyframe (-1 and the pose
+  // itself before the first keyframe).
+  std::vector<std::pair<int, Eigen::Isometry3d>> anchors_;
+};
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,68 @@
+#pragma once
+// Every stage on one scan, as the offline tools run them and as the ROS nodes chain them: the
+// ambient filter (image_projection), LidarOdometry (feature_association), LidarMapping
+// (map_optimization, with transform fusion).
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/common/timing.h"
+#include "adaptive_lego_loam/core/odometry/lidar_odometry.h"
+#include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
+
+namespace adaptive_lego_loam {
+
+struct FrameResult {
+  int frame = 0;
+  double stamp = 0.0;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();           // mapped, sensor in map
+  Eigen::Isometry3d odometry_pose = Eigen::Isometry3d::Identity();  // scan-to-scan alone
+  bool valid_scan = true;  // false when the scan had no valid point (pose predicted)
+  bool keyframe = false;
+  bool loop_closed = false;
+  bool motion_gated = false;  // scan-to-map started from the previous velocity (see MappingParams)
+  std::optional<LoopDetection> loop;  // when loop closure was attempted on this scan
+  bool deskewed_by_time_field = false;
+  OdometryResult odometry;
+  MapMatchResult mapping;
+  int sharp = 0, less_sharp = 0, flat = 0, less_flat = 0;
+  StageTimes times;
+};
+
+// The weak-direction prior the mapping gets from the ambient filter (none when turned off or
+// when mu is unknown).
+std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
+                                                       const AmbientFilterResult& filtered);
+// The same from the filter's degeneration and its (smoothed) mu, e.g. as a message carries them.
+std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
+                                                       const Degeneration& degeneration, double mu);
+
+class Pipeline {
+ public:
+  explicit Pipeline(const Config& config);
+  const FrameResult& process(const Scan& scan);
+  // At the end of the input: finishes a loop closure still in progress (see LidarMapping).
+  std::optional<LoopDetection> finish_loop_closure() { return mapping_.finish_loop_closure(); }
+
+  const Config& config() const { return config_; }
+  const AmbientFilterResult& filter_result() const { return filtered_; }
+  const OdometryOutput& odometry_output() const { return odometry_out_; }
+  const LidarMapping& mapping() const { return mapping_; }
+  const std::vector<Keyframe>& keyframes() const { return mapping_.keyframes(); }
+  std::vector<Eigen::Isometry3d> trajectory() const { return mapping_.trajectory(); }
+
+ private:
+  Config config_;
+  AmbientFilter filter_;
+  LidarOdometry odometry_;
+  LidarMapping mapping_;
+  AmbientFilterResult filtered_;
+  OdometryOutput odometry_out_;
+  MappingOutput mapping_out_;
+  int frames_ = 0;
+  FrameResult result_;
+};
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,119 @@
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+
+#include <climits>
+
+#include "adaptive_lego_loam/core/ambient/skeleton.h"
+
+namespace adaptive_lego_loam {
+
+EuclideanClusteringParams euclidean_params(const AmbientFilterParams& ambient, int min_points) {
+  EuclideanClusteringParams params;
+  params.window = ambient.euclidean_window;
+  params.gamma = ambient.euclidean_gamma;
+  params.fixed_threshold = ambient.euclidean_fixed_threshold;
+  params.min_points = min_points;
+  return params;
+}
+
+NormalParams normal_params(const AmbientFilterParams& ambient, double max_range) {
+  NormalParams params;
+  params.sample_ratio = ambient.normal_sample_ratio;
+  params.window = ambient.normal_window;
+  params.depth_threshold = ambient.normal_depth_threshold;
+  params.min_neighbors = ambient.normal_min_neighbors;
+  params.max_range = max_range;
+  params.seed = ambient.seed;
+  return params;
+}
+
+std::vector<ScanPoint> AmbientFilterResult::skeleton_cloud() const {
+  std::vector<ScanPoint> points;
+  points.reserve(skeleton_points);
+  const RangeImage& image = segmentation.image;
+  for (int cell = 0; cell < static_cast<int>(skeleton.size()); ++cell) {
+    if (skeleton[cell]) points.push_back(image.point(cell));
+  }
+  return points;
+}
+
+AmbientFilter::AmbientFilter(const Config& config)
+    : config_(config),
+      segmenter_(config.sensor, config.segmentation),
+      euclidean_(segmenter_.geometry(),
+                 euclidean_params(config.ambient, config.ambient.skeleton_euclidean_min_points)),
+      strict_depth_(segmenter_.geometry()) {}
+
+void AmbientFilter::reset() {
+  has_previous_ = false;
+  previous_mu_ = 0.0;
+  previous_beta0_deg_ = 0.0;
+}
+
+void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
+  const AmbientFilterParams& ambient = config_.ambient;
+  segmenter_.project_and_mark_ground(scan, result.segmentation);
+  result.adaptive = ambient.mode == Beta0Mode::kAdaptive;
+  if (!result.adaptive) {
+    result.degeneration = Degeneration();
+    result.skeleton_points = 0;
+    result.normals.clear();
+    result.mu = 0.0;
+    result.beta0_deg = ambient.fixed_beta0_deg;
+    segmenter_.cluster_and_build(scan, result.beta0_deg, result.segmentation);
+    return;
+  }
+  estimate_degeneration(result);
+  // Step 9 from step 5's strict clusters: beta0 lies between beta0_min and beta0_max, so with
+  // the usual beta0_min < beta0_max the clusters only merge (recluster() handles either way).
+  SegmentationResult& segmentation = result.segmentation;
+  Stopwatch watch;
+  strict_depth_.recluster(segmentation.image, result.beta0_deg, segmenter_.params().size_rule,
+                          segmentation.clusters);
+  segmentation.beta0_deg = result.beta0_deg;
+  segmentation.times.add("depth_clustering", watch.lap_ms());
+  segmenter_.build_cloud(scan, segmentation);
+}
+
+void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {
+  const AmbientFilterParams& ambient = config_.ambient;
+  SegmentationResult& segmentation = result.segmentation;
+  const RangeImage& image = segmentation.image;
+  StageTimes& times = segmentation.times;
+  Stopwatch watch;
+
+  euclidean_.cluster(image, segmentation.ground, result.euclidean);
+  times.add("euclidean_clustering", watch.lap_ms());
+
+  // Surfaces: depth clusters at the strict threshold, kept on size alone.
+  const ClusterSizeRule surface_rule{ambient.skeleton_depth_min_points, INT_MAX, INT_MAX};
+  strict_depth_.cluster(image, segmentation.ground, ambient.beta0_max_deg, surface_rule,
+                        result.skeleton_depth);
+  result.skeleton_points =
+      extract_skeleton(result.euclidean, result.skeleton_depth, result.skeleton);
+  times.add("skeleton", watch.lap_ms());
+
+  compute_normals(image, result.skeleton, segmentation.ground,
+                  normal_params(ambient, config_.sensor.max_range), result.normals);
+  times.add("normals", watch.lap_ms());
+
+  result.degeneration = degeneration_from_normals(result.normals);
+  if (result.degeneration.valid) {
+    const double raw = result.degeneration.mu;
+    const double smoothing = has_previous_ ? ambient.mu_smoothing : 0.0;
+    result.mu = smoothing * previous_mu_ + (1.0 - smoothing) * raw;
+    result.beta0_deg = beta0_from_mu(result.mu, ambient.beta0_min_deg, ambient.beta0_max_deg);
+    has_previous_ = true;
+    previous_mu_ = result.mu;
+    previous_beta0_deg_ = result.beta0_deg;
+  } else if (has_previous_) {
+    // No skeleton normal (empty or all-ground scan): keep the last threshold.
+    result.mu = previous_mu_;
+    result.beta0_deg = previous_beta0_deg_;
+  } else {
+    result.mu = 0.0;
+    result.beta0_deg = ambient.beta0_max_deg;  // LeGO-LOAM's strict default until mu is known
+  }
+  times.add("degeneration", watch.lap_ms());
+}
+
+}  // namespace adaptive_lego_loam

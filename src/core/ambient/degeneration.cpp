@@ -1,0 +1,47 @@
+#include "adaptive_lego_loam/core/ambient/degeneration.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace adaptive_lego_loam {
+
+Degeneration degeneration_from_normals(const std::vector<NormalFeature>& normals) {
+  Degeneration result;
+  result.normals = static_cast<int>(normals.size());
+  Eigen::Matrix2d moment = Eigen::Matrix2d::Zero();
+  for (const NormalFeature& n : normals) {
+    const Eigen::Vector2d v = n.weight * n.normal.head<2>().cast<double>();
+    moment += v * v.transpose();
+  }
+  if (!(moment.trace() > 0.0)) return result;  // no horizontal constraint at all: unknown
+
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(moment);
+  const Eigen::Vector2d strong = solver.eigenvectors().col(1);  // larger eigenvalue
+  Eigen::Vector2d weak = solver.eigenvectors().col(0);
+  double along_strong = 0.0, along_weak = 0.0;
+  for (const NormalFeature& n : normals) {
+    const Eigen::Vector2d v = n.weight * n.normal.head<2>().cast<double>();
+    along_strong += std::fabs(v.dot(strong));
+    along_weak += std::fabs(v.dot(weak));
+  }
+  // The direction has no sign: report it with x >= 0 (y > 0 when x = 0) so runs compare.
+  if (weak.x() < 0.0 || (weak.x() == 0.0 && weak.y() < 0.0)) weak = -weak;
+  result.valid = true;
+  result.weak_direction = weak;
+  if (along_weak <= 0.0) {
+    result.k = std::numeric_limits<double>::infinity();
+    result.mu = 1.0;
+    return result;
+  }
+  result.k = std::max(1.0, along_strong / along_weak);
+  result.mu = std::clamp(1.0 - 1.0 / result.k, 0.0, 1.0);
+  return result;
+}
+
+double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg) {
+  return mu * (beta0_min_deg - beta0_max_deg) + beta0_max_deg;
+}
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,364 @@
+#include "adaptive_lego_loam/core/common/params.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace adaptive_lego_loam {
+namespace {
+
+// Reads the keys of one YAML mapping, checking type and range, and remembers which keys it read
+// so that anything else in the mapping can be reported as unknown.
+class SectionReader {
+ public:
+  SectionReader(const YAML::Node& node, std::string path, std::string source)
+      : node_(node), path_(std::move(path)), source_(std::move(source)) {
+    if (node_ && !node_.IsMap()) fail(path_, "expected a mapping of keys");
+  }
+
+  template <typename T>
+  void number(const char* key, T& value, T lo, T hi) {
+    const YAML::Node item = find(key);
+    if (!item) return;
+    T parsed{};
+    if (!item.IsScalar() || !YAML::convert<T>::decode(item, parsed)) {
+      fail(full(key), "expected " + kind<T>() + " in " + range(lo, hi));
+    }
+    if (!(parsed >= lo && parsed <= hi)) {
+      throw ConfigError(source_ + ": " + full(key) + " = " + item.Scalar() +
+                        " is out of range: expected " + kind<T>() + " in " + range(lo, hi));
+    }
+    value = parsed;
+  }
+
+  void boolean(const char* key, bool& value) {
+    const YAML::Node item = find(key);
+    if (!item) return;
+    if (!item.IsScalar() || !YAML::convert<bool>::decode(item, value)) {
+      fail(full(key), "expected true or false");
+    }
+  }
+
+  void text(const char* key, std::string& value) {
+    const YAML::Node item = find(key);
+    if (!item) return;
+    if (!item.IsScalar()) fail(full(key), "expected a string");
+    value = item.Scalar();
+  }
+
+  template <typename Enum>
+  void choice(const char* key, Enum& value,
+              const std::vector<std::pair<std::string, Enum>>& options) {
+    const YAML::Node item = find(key);
+    if (!item) return;
+    std::string allowed;
+    for (const auto& [name, option] : options) {
+      if (item.IsScalar() && item.Scalar() == name) {
+        value = option;
+        return;
+      }
+      allowed += (allowed.empty() ? "" : ", ") + name;
+    }
+    fail(full(key), "expected one of: " + allowed);
+  }
+
+  template <typename T>
+  void list(const char* key, std::vector<T>& values, T lo, T hi) {
+    const YAML::Node item = find(key);
+    if (!item) return;
+    if (!item.IsSequence()) fail(full(key), "expected a list of " + kind<T>() + "s");
+    values.clear();
+    for (std::size_t i = 0; i < item.size(); ++i) {
+      T parsed{};
+      if (!item[i].IsScalar() || !YAML::convert<T>::decode(item[i], parsed) ||
+          !(parsed >= lo && parsed <= hi)) {
+        fail(full(key) + "[" + std::to_string(i) + "]",
+             "expected " + kind<T>() + " in " + range(lo, hi));
+      }
+      values.push_back(parsed);
+    }
+  }
+
+  bool has(const char* key) const { return node_ && node_[key]; }
+
+  void reject_unknown_keys() const {
+    if (!node_) return;
+    for (const auto& entry : node_) {
+      const std::string key = entry.first.as<std::string>();
+      if (!read_.count(key)) fail(full(key.c_str()), "is not a known key");
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw ConfigError(source_ + ": " + key + ": " + what);
+  }
+
+ private:
+  YAML::Node find(const char* key) {
+    read_.insert(key);
+    if (!node_) return node_;  // undefined, like any missing key
+    // Const access: operator[] on a non-const node would create the key.
+    const YAML::Node& node = node_;
+    return node[key];
+  }
+  std::string full(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  template <typename T>
+  static std::string kind() {
+    return std::is_integral<T>::value ? "an integer" : "a number";
+  }
+  template <typename T>
+  static std::string range(T lo, T hi) {
+    std::ostringstream out;
+    out << "[" << lo << ", " << hi << "]";
+    return out.str();
+  }
+
+  YAML::Node node_;
+  std::string path_;
+  std::string source_;
+  std::set<std::string> read_;
+};
+
+void read_sensor(SectionReader& in, SensorParams& s) {
+  in.text("name", s.name);
+  in.number("rows", s.rows, 1, 512);
+  in.number("columns", s.columns, 16, 20000);
+  in.choice("row_source", s.row_source,
+            {{"auto", RowSource::kAuto},
+             {"ring", RowSource::kRing},
+             {"elevation", RowSource::kElevation}});
+  double vertical_min = -15.0, vertical_max = 15.0;
+  in.number("vertical_min_deg", vertical_min, -90.0, 90.0);
+  in.number("vertical_max_deg", vertical_max, -90.0, 90.0);
+  in.list("beam_angles_deg", s.beam_angles_deg, -90.0, 90.0);
+  in.list("beam_offsets_m", s.beam_offsets_m, -1.0, 1.0);
+  in.list("ring_to_row", s.ring_to_row, -1, 511);
+  in.number("min_range", s.min_range, 0.0, 50.0);
+  in.number("max_range", s.max_range, 1.0, 1000.0);
+  in.number("mount_angle_deg", s.mount_angle_deg, -90.0, 90.0);
+  in.number("ground_rows", s.ground_rows, 0, 512);
+  in.number("scan_period", s.scan_period, 0.001, 1.0);
+  in.boolean("deskewed", s.deskewed);
+  if (s.beam_angles_deg.empty()) {
+    if (!(vertical_max > vertical_min)) {
+      in.fail("sensor.vertical_max_deg", "must be greater than sensor.vertical_min_deg");
+    }
+    for (int row = 0; row < s.rows; ++row) {
+      const double step = s.rows > 1 ? (vertical_max - vertical_min) / (s.rows - 1) : 0.0;
+      s.beam_angles_deg.push_back(vertical_min + step * row);
+    }
+  } else if (in.has("vertical_min_deg") || in.has("vertical_max_deg")) {
+    in.fail("sensor.beam_angles_deg", "give either beam_angles_deg or vertical_min/max_deg");
+  }
+  in.reject_unknown_keys();
+}
+
+void read_size_rule(SectionReader& in, ClusterSizeRule& rule) {
+  in.number("min_cluster_points", rule.min_points, 1, 1000000);
+  in.number("min_line_cluster_points", rule.min_points_multi_row, 1, 1000000);
+  in.number("min_cluster_rows", rule.min_rows, 1, 512);
+}
+
+void read_segmentation(SectionReader& in, SegmentationParams& s) {
+  in.number("beta0_deg", s.beta0_deg, 0.1, 89.9);
+  read_size_rule(in, s.size_rule);
+  in.number("ground_slope_tolerance_deg", s.ground_slope_tolerance_deg, 0.0, 45.0);
+  in.number("ground_downsample", s.ground_downsample, 1, 100);
+  in.number("outlier_downsample", s.outlier_downsample, 1, 100);
+  in.reject_unknown_keys();
+}
+
+void read_ambient(SectionReader& in, AmbientFilterParams& a) {
+  in.choice("mode", a.mode, {{"adaptive", Beta0Mode::kAdaptive}, {"fixed", Beta0Mode::kFixed}});
+  in.number("beta0_min_deg", a.beta0_min_deg, 0.1, 89.9);
+  in.number("beta0_max_deg", a.beta0_max_deg, 0.1, 89.9);
+  in.number("fixed_beta0_deg", a.fixed_beta0_deg, 0.1, 89.9);
+  in.number("euclidean_window", a.euclidean_window, 1, 10);
+  in.number("euclidean_gamma", a.euclidean_gamma, 0.1, 100.0);
+  in.number("euclidean_fixed_threshold", a.euclidean_fixed_threshold, 0.0, 100.0);
+  in.number("skeleton_euclidean_min_points", a.skeleton_euclidean_min_points, 1, 1000000);
+  in.number("skeleton_depth_min_points", a.skeleton_depth_min_points, 1, 1000000);
+  in.number("normal_sample_ratio", a.normal_sample_ratio, 0.0001, 1.0);
+  in.number("normal_window", a.normal_window, 1, 10);
+  in.number("normal_depth_threshold", a.normal_depth_threshold, 0.01, 100.0);
+  in.number("normal_min_neighbors", a.normal_min_neighbors, 3, 1000);
+  in.number("seed", a.seed, 0u, 4294967295u);
+  in.number("mu_smoothing", a.mu_smoothing, 0.0, 0.99);
+  if (a.beta0_min_deg > a.beta0_max_deg) {
+    in.fail("ambient_filter.beta0_min_deg", "must not exceed ambient_filter.beta0_max_deg");
+  }
+  in.reject_unknown_keys();
+}
+
+void read_features(SectionReader& in, FeatureParams& f) {
+  in.number("sectors", f.sectors, 1, 64);
+  in.number("sharp_per_sector", f.sharp_per_sector, 0, 1000);
+  in.number("less_sharp_per_sector", f.less_sharp_per_sector, 0, 10000);
+  in.number("flat_per_sector", f.flat_per_sector, 0, 1000);
+  in.number("edge_threshold", f.edge_threshold, 0.0, 100.0);
+  in.number("surface_threshold", f.surface_threshold, 0.0, 100.0);
+  in.number("occlusion_threshold", f.occlusion_threshold, 0.0, 100.0);
+  in.number("parallel_threshold", f.parallel_threshold, 0.0, 1.0);
+  in.number("less_flat_voxel", f.less_flat_voxel, 0.0, 10.0);
+  if (f.less_sharp_per_sector < f.sharp_per_sector) {
+    in.fail("features.less_sharp_per_sector", "must be at least features.sharp_per_sector");
+  }
+  in.reject_unknown_keys();
+}
+
+void read_odometry(SectionReader& in, OdometryParams& o) {
+  in.choice("mode", o.mode,
+            {{"two_step", OdometryMode::kTwoStep}, {"joint", OdometryMode::kJoint}});
+  in.number("max_iterations", o.max_iterations, 1, 100);
+  in.number("solver_iterations", o.solver_iterations, 1, 100);
+  in.number("max_match_distance", o.max_match_distance, 0.1, 100.0);
+  in.number("huber_loss", o.huber_loss, 0.001, 100.0);
+  in.boolean("constant_velocity", o.constant_velocity);
+  in.boolean("motion_from_mapping", o.motion_from_mapping);
+  in.reject_unknown_keys();
+}
+
+void read_mapping(SectionReader& in, MappingParams& m) {
+  in.boolean("enabled", m.enabled);
+  in.number("max_iterations", m.max_iterations, 1, 100);
+  in.number("solver_iterations", m.solver_iterations, 1, 100);
+  in.number("keep_correspondence_distance", m.keep_correspondence_distance, 0.0, 1.0);
+  in.number("huber_loss", m.huber_loss, 0.001, 100.0);
+  in.number("corner_voxel", m.corner_voxel, 0.01, 10.0);
+  in.number("surface_voxel", m.surface_voxel, 0.01, 10.0);
+  in.number("scan_corner_voxel", m.scan_corner_voxel, 0.0, 10.0);
+  in.number("scan_surface_voxel", m.scan_surface_voxel, 0.0, 10.0);
+  in.number("keyframe_distance", m.keyframe_distance, 0.0, 100.0);
+  in.number("keyframe_angle_deg", m.keyframe_angle_deg, 0.0, 180.0);
+  in.number("local_map_radius", m.local_map_radius, 1.0, 1000.0);
+  in.number("local_map_keyframes", m.local_map_keyframes, 1, 10000);
+  in.number("local_map_lag_keyframes", m.local_map_lag_keyframes, 0, 10000);
+  in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
+  in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
+  in.number("max_motion_change", m.max_motion_change, 0.0, 100.0);
+  in.number("max_motion_change_deg", m.max_motion_change_deg, 0.0, 180.0);
+  in.reject_unknown_keys();
+}
+
+void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
+  in.boolean("enabled", l.enabled);
+  in.number("search_radius", l.search_radius, 0.1, 1000.0);
+  in.number("min_time_gap", l.min_time_gap, 0.0, 1.0e6);
+  in.number("neighbourhood_keyframes", l.neighbourhood_keyframes, 0, 10000);
+  in.number("fitness_threshold", l.fitness_threshold, 1.0e-6, 100.0);
+  in.number("voxel_size", l.voxel_size, 0.0, 10.0);
+  in.number("icp_max_correspondence_distance", l.icp_max_correspondence_distance, 0.01, 1000.0);
+  in.number("icp_max_iterations", l.icp_max_iterations, 1, 10000);
+  in.number("icp_max_points", l.icp_max_points, 3, 10000000);
+  in.number("map_points_per_scan", l.map_points_per_scan, 1, 100000000);
+  in.number("icp_iterations_per_scan", l.icp_iterations_per_scan, 1, 10000);
+  in.number("graph_iterations_per_scan", l.graph_iterations_per_scan, 1, 10000);
+  in.number("graph_max_nodes", l.graph_max_nodes, 10, 1000000);
+  in.number("odometry_sigma_translation", l.odometry_sigma_translation, 1.0e-6, 100.0);
+  in.number("odometry_sigma_rotation_deg", l.odometry_sigma_rotation_deg, 1.0e-6, 180.0);
+  in.number("loop_sigma_translation", l.loop_sigma_translation, 1.0e-6, 100.0);
+  in.number("loop_sigma_rotation_deg", l.loop_sigma_rotation_deg, 1.0e-6, 180.0);
+  in.choice("robust_loss", l.robust_loss,
+            {{"cauchy", RobustLoss::kCauchy},
+             {"huber", RobustLoss::kHuber},
+             {"none", RobustLoss::kNone}});
+  in.number("robust_loss_scale", l.robust_loss_scale, 0.01, 1000.0);
+  in.reject_unknown_keys();
+}
+
+void read_clustering_benchmark(SectionReader& in, ClusteringBenchmarkParams& b) {
+  in.number("min_cluster_points", b.min_cluster_points, 1, 1000000);
+  in.reject_unknown_keys();
+}
+
+}  // namespace
+
+void validate(const SensorParams& s, const std::string& source) {
+  auto fail = [&](const std::string& key, const std::string& what) {
+    throw ConfigError(source + ": " + key + ": " + what);
+  };
+  if (static_cast<int>(s.beam_angles_deg.size()) != s.rows) {
+    fail("sensor.beam_angles_deg", "has " + std::to_string(s.beam_angles_deg.size()) +
+                                       " entries, expected one per row (" + std::to_string(s.rows) +
+                                       ")");
+  }
+  for (int row = 1; row < s.rows; ++row) {
+    if (!(s.beam_angles_deg[row] > s.beam_angles_deg[row - 1])) {
+      fail("sensor.beam_angles_deg", "must be strictly ascending (row 0 = lowest beam); entry " +
+                                         std::to_string(row) + " is not above entry " +
+                                         std::to_string(row - 1));
+    }
+  }
+  if (!s.beam_offsets_m.empty() && static_cast<int>(s.beam_offsets_m.size()) != s.rows) {
+    fail("sensor.beam_offsets_m", "has " + std::to_string(s.beam_offsets_m.size()) +
+                                      " entries, expected none or one per row (" +
+                                      std::to_string(s.rows) + ")");
+  }
+  for (std::size_t ring = 0; ring < s.ring_to_row.size(); ++ring) {
+    if (s.ring_to_row[ring] >= s.rows) {
+      fail("sensor.ring_to_row[" + std::to_string(ring) + "]",
+           "expected a row in [0, " + std::to_string(s.rows - 1) + "]");
+    }
+  }
+  if (!(s.max_range > s.min_range)) fail("sensor.max_range", "must exceed sensor.min_range");
+  if (s.ground_rows > s.rows) {
+    fail("sensor.ground_rows", "expected an integer in [0, " + std::to_string(s.rows) + "]");
+  }
+}
+
+Config parse_config(const std::string& yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(source + ": not valid YAML: " + e.what());
+  }
+  if (!root || root.IsNull()) throw ConfigError(source + ": empty config");
+  if (!root.IsMap()) throw ConfigError(source + ": expected a mapping of sections");
+
+  Config config;
+  config.source = source;
+  const YAML::Node& sections = root;  // const: looking a section up must not create it
+  auto section = [&](const char* name) { return SectionReader(sections[name], name, source); };
+  if (!sections["sensor"]) throw ConfigError(source + ": sensor: missing section");
+  SectionReader sensor = section("sensor");
+  read_sensor(sensor, config.sensor);
+  SectionReader segmentation = section("segmentation");
+  read_segmentation(segmentation, config.segmentation);
+  SectionReader ambient = section("ambient_filter");
+  read_ambient(ambient, config.ambient);
+  SectionReader features = section("features");
+  read_features(features, config.features);
+  SectionReader odometry = section("odometry");
+  read_odometry(odometry, config.odometry);
+  SectionReader mapping = section("mapping");
+  read_mapping(mapping, config.mapping);
+  SectionReader loop_closure = section("loop_closure");
+  read_loop_closure(loop_closure, config.loop_closure);
+  SectionReader benchmark = section("clustering_benchmark");
+  read_clustering_benchmark(benchmark, config.clustering_benchmark);
+
+  for (const auto& entry : root) {
+    const std::string name = entry.first.as<std::string>();
+    static const std::set<std::string> known = {
+        "sensor",   "segmentation", "ambient_filter", "features",
+        "odometry", "mapping",      "loop_closure",   "clustering_benchmark"};
+    if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
+  }
+  validate(config.sensor, source);
+  return config;
+}
+
+Config load_config(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw ConfigError(path + ": cannot open config file");
+  std::stringstream text;
+  text << file.rdbuf();
+  return parse_config(text.str(), path);
+}
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,276 @@
+#include "adaptive_lego_loam/core/loop_closure/loop_detection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "adaptive_lego_loam/core/common/timing.h"
+#include "adaptive_lego_loam/core/loop_closure/stepped_icp.h"
+#include "adaptive_lego_loam/core/spatial/voxel_filter.h"
+
+namespace adaptive_lego_loam {
+namespace {
+
+// A rigid transform needs three point pairs; fewer cannot be checked at all.
+constexpr std::size_t kMinIcpPoints = 3;
+
+void append(Cloud& into, const CloudPtr& cloud) {
+  if (cloud) into += *cloud;
+}
+
+CloudPtr cloud_in_map(const Keyframe& keyframe) {
+  Cloud sensor_frame;
+  append(sensor_frame, keyframe.corners);
+  append(sensor_frame, keyframe.surfaces);
+  append(sensor_frame, keyframe.outliers);
+  return transform_cloud(sensor_frame, keyframe.pose);
+}
+
+bool old_enough(const Keyframe& candidate, const Keyframe& current,
+                const LoopClosureParams& params) {
+  return candidate.stamp <= current.stamp - params.min_time_gap;
+}
+
+// The candidate and up to neighbourhood_keyframes keyframes on either side of it, leaving out
+// the current one and any less than min_time_gap older.
+std::vector<Keyframe> neighbourhood(const std::vector<Keyframe>& keyframes, int matched,
+                                    int current, const LoopClosureParams& params) {
+  const int first = std::max(0, matched - params.neighbourhood_keyframes);
+  const int last =
+      std::min(static_cast<int>(keyframes.size()) - 1, matched + params.neighbourhood_keyframes);
+  std::vector<Keyframe> chosen;
+  for (int i = first; i <= last; ++i) {
+    if (i != current && old_enough(keyframes[i], keyframes[current], params)) {
+      chosen.push_back(keyframes[i]);
+    }
+  }
+  return chosen;
+}
+
+// Every n-th point of `cloud`, at most `most` of them. ICP's time grows with its source; a
+// uniform sample keeps the fitness (a mean over the source) comparable, where a voxel filter's
+// centroids would raise it.
+CloudPtr sample(const CloudPtr& cloud, int most) {
+  const std::size_t step = (cloud->size() + most - 1) / most;
+  if (step <= 1) return cloud;
+  CloudPtr sampled(new Cloud);
+  sampled->reserve(cloud->size() / step + 1);
+  for (std::size_t i = 0; i < cloud->size(); i += step)
+    sampled->push_back((*cloud)[i]);
+  return sampled;
+}
+
+Eigen::Isometry3d isometry_of(const Eigen::Matrix4f& transformation) {
+  const Eigen::Matrix4d t = transformation.cast<double>();
+  Eigen::Isometry3d isometry = Eigen::Isometry3d::Identity();
+  isometry.linear() = Eigen::Quaterniond(t.topLeftCorner<3, 3>()).normalized().toRotationMatrix();
+  isometry.translation() = t.topRightCorner<3, 1>();
+  return isometry;
+}
+
+}  // namespace
+
+const char* to_string(LoopStatus status) {
+  switch (status) {
+    case LoopStatus::kAccepted:
+      return "accepted";
+    case LoopStatus::kDisabled:
+      return "disabled";
+    case LoopStatus::kNoCandidate:
+      return "no candidate";
+    case LoopStatus::kTooFewPoints:
+      return "too few points";
+    case LoopStatus::kNotConverged:
+      return "ICP did not converge";
+    case LoopStatus::kPoorFitness:
+      return "ICP fitness too high";
+  }
+  return "unknown";
+}
+
+int find_loop_candidate(const std::vector<Keyframe>& keyframes, int current_index,
+                        const LoopClosureParams& params) {
+  const Keyframe& current = keyframes.at(current_index);
+  const Eigen::Vector3d position = current.pose.translation();
+  int nearest = -1;
+  double nearest_distance = 0.0;
+  for (int i = 0; i < static_cast<int>(keyframes.size()); ++i) {
+    if (i == current_index || !old_enough(keyframes[i], current, params)) continue;
+    const double distance = (keyframes[i].pose.translation() - position).norm();
+    if (distance > params.search_radius) continue;
+    if (nearest < 0 || distance < nearest_distance) {
+      nearest = i;
+      nearest_distance = distance;
+    }
+  }
+  return nearest;
+}
+
+struct LoopDetectionJob::Work {
+  enum class Phase { kMap, kFilter, kTree, kIcp };
+  Phase phase = Phase::kMap;
+  std::vector<Keyframe> map_keyframes;  // the candidate's neighbourhood, as when the job began
+  std::size_t mapped = 0;               // how many of them are in the map
+  std::optional<VoxelSums> map_sums;    // with voxel_size > 0
+  CloudPtr map{new Cloud};  // the map to align to (gathered here directly without a filter)
+  CloudPtr source;
+  Eigen::Isometry3d current_pose, matched_pose;
+  std::unique_ptr<SteppedIcp> icp;
+};
+
+LoopDetectionJob::LoopDetectionJob(const std::vector<Keyframe>& keyframes, int current_index,
+                                   const LoopClosureParams& params)
+    : params_(params) {
+  if (current_index < 0 || current_index >= static_cast<int>(keyframes.size())) {
+    throw std::out_of_range("detect_loop: keyframe " + std::to_string(current_index) + " of " +
+                            std::to_string(keyframes.size()));
+  }
+  const Stopwatch stopwatch;
+  detection_.current_index = current_index;
+  if (!params.enabled) {
+    detection_.status = LoopStatus::kDisabled;
+    return;
+  }
+  detection_.matched_index = find_loop_candidate(keyframes, current_index, params);
+  if (detection_.matched_index >= 0) {
+    work_ = std::make_unique<Work>();
+    if (params.voxel_size > 0.0) work_->map_sums.emplace(params.voxel_size);
+    work_->map_keyframes =
+        neighbourhood(keyframes, detection_.matched_index, current_index, params);
+    work_->source = sample(cloud_in_map(keyframes[current_index]), params.icp_max_points);
+    work_->current_pose = keyframes[current_index].pose;
+    work_->matched_pose = keyframes[detection_.matched_index].pose;
+    if (work_->source->size() < kMinIcpPoints) finish(LoopStatus::kTooFewPoints);
+  } else {
+    finish(LoopStatus::kNoCandidate);
+  }
+  detection_.time_ms = stopwatch.elapsed_ms();
+}
+
+LoopDetectionJob::~LoopDetectionJob() = default;
+LoopDetectionJob::LoopDetectionJob(LoopDetectionJob&&) noexcept = default;
+LoopDetectionJob& LoopDetectionJob::operator=(LoopDetectionJob&&) noexcept = default;
+
+bool LoopDetectionJob::done() const {
+  return !work_;
+}
+
+bool LoopDetectionJob::step() {
+  if (done()) return true;
+  const Stopwatch stopwatch;
+  switch (work_->phase) {
+    case Work::Phase::kMap:
+      add_to_map();
+      break;
+    case Work::Phase::kFilter:
+      filter_map();
+      break;
+    case Work::Phase::kTree:
+      prepare_icp();
+      break;
+    case Work::Phase::kIcp:
+      iterate_icp();
+      break;
+  }
+  detection_.time_ms += stopwatch.elapsed_ms();
+  return done();
+}
+
+// Places keyframes into the map until map_points_per_scan points went in. A voxel filter of the
+// keyframes added one by one equals that of their concatenation.
+void LoopDetectionJob::add_to_map() {
+  Work& work = *work_;
+  if (work.mapped == 0 && work.map_sums) {
+    // Growing the table as it fills would re-insert every voxel in one step; the neighbourhood's
+    // keyframes overlap, about 4 points or more to a voxel.
+    std::size_t total = 0;
+    for (const Keyframe& keyframe : work.map_keyframes) {
+      for (const CloudPtr& cloud : {keyframe.corners, keyframe.surfaces, keyframe.outliers})
+        total += cloud ? cloud->size() : 0;
+    }
+    work.map_sums->reserve(total / 4);
+  }
+  std::size_t points = 0;
+  while (work.mapped < work.map_keyframes.size() &&
+         points < static_cast<std::size_t>(params_.map_points_per_scan)) {
+    const CloudPtr placed = cloud_in_map(work.map_keyframes[work.mapped++]);
+    points += placed->size();
+    if (work.map_sums) {
+      work.map_sums->add(*placed);
+    } else {
+      *work.map += *placed;
+    }
+  }
+  if (work.mapped == work.map_keyframes.size()) work.phase = Work::Phase::kFilter;
+}
+
+// The voxel filter's centroids: a walk over its whole table, a step of its own.
+void LoopDetectionJob::filter_map() {
+  if (work_->map_sums) {
+    work_->map = work_->map_sums->centroids();
+    work_->map_sums.reset();
+  }
+  work_->map_keyframes.clear();
+  if (work_->map->size() < kMinIcpPoints) {
+    finish(LoopStatus::kTooFewPoints);
+    return;
+  }
+  work_->phase = Work::Phase::kTree;
+}
+
+void LoopDetectionJob::prepare_icp() {
+  work_->icp = std::make_unique<SteppedIcp>(work_->source, work_->map, params_);
+  work_->phase = Work::Phase::kIcp;
+}
+
+// Runs up to icp_iterations_per_scan iterations; the fitness, once ICP has converged or run
+// icp_max_iterations (which counts as converged, as PCL's hasConverged() has it), takes the place
+// of one.
+void LoopDetectionJob::iterate_icp() {
+  SteppedIcp& icp = *work_->icp;
+  for (int piece = 0; piece < params_.icp_iterations_per_scan; ++piece) {
+    if (icp.converged() || icp.iterations() >= params_.icp_max_iterations) {
+      conclude(icp.fitness(), icp.transformation());
+      return;
+    }
+    icp.iterate();
+    detection_.icp_iterations = icp.iterations();
+    if (icp.found_no_correspondences()) {
+      finish(LoopStatus::kNotConverged);
+      return;
+    }
+  }
+}
+
+void LoopDetectionJob::conclude(double fitness, const Eigen::Matrix4f& transformation) {
+  detection_.fitness = fitness;
+  detection_.correction = isometry_of(transformation);
+  if (fitness >= params_.fitness_threshold) {
+    finish(LoopStatus::kPoorFitness);
+    return;
+  }
+  const Eigen::Isometry3d corrected = detection_.correction * work_->current_pose;
+  detection_.relative_pose = work_->matched_pose.inverse() * corrected;
+  finish(LoopStatus::kAccepted);
+}
+
+void LoopDetectionJob::finish(LoopStatus status) {
+  detection_.status = status;
+  work_.reset();
+}
+
+LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
+                          const LoopClosureParams& params) {
+  LoopClosureParams unbounded = params;
+  unbounded.map_points_per_scan = std::numeric_limits<int>::max();
+  unbounded.icp_iterations_per_scan = std::numeric_limits<int>::max();
+  LoopDetectionJob job(keyframes, current_index, unbounded);
+  while (!job.step()) {
+  }
+  return job.detection();
+}
+
+}  // namespace adaptive_lego_loam

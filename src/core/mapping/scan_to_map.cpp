@@ -1,0 +1,248 @@
+#include "adaptive_lego_loam/core/mapping/scan_to_map.h"
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/manifold.h>
+#include <ceres/problem.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "adaptive_lego_loam/core/odometry/residuals.h"
+
+namespace adaptive_lego_loam {
+namespace {
+
+constexpr int kNeighbours = 5;
+constexpr float kMaxNeighbourDistance = 1.0f;  // m, as LOAM
+constexpr double kMaxPlaneDeviation = 0.2;     // m
+constexpr int kMinMatches = 20;
+constexpr float kSearchRadius = LocalMap::kSearchRadius;
+
+// Pulls the translation along `direction` toward `target`.
+struct DirectionPrior {
+  Eigen::Vector3d direction, target;
+  double weight;
+  template <typename T>
+  bool operator()(const T* translation, T* residual) const {
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(translation);
+    residual[0] = T(weight) * direction.cast<T>().dot(t - target.cast<T>());
+    return true;
+  }
+};
+
+// A line through the neighbours when one spread dominates.
+std::optional<LineMatch> fit_line(const Eigen::Vector3f* neighbours,
+                                  const Eigen::Vector3d& sensor_point) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int k = 0; k < kNeighbours; ++k)
+    centroid += neighbours[k].cast<double>();
+  centroid /= kNeighbours;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < kNeighbours; ++k) {
+    const Eigen::Vector3d d = neighbours[k].cast<double>() - centroid;
+    covariance += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(covariance / kNeighbours);
+  if (solver.eigenvalues()(2) < 3.0 * solver.eigenvalues()(1)) return std::nullopt;
+  return LineMatch{sensor_point, centroid, solver.eigenvectors().col(2)};
+}
+
+// A plane through the neighbours when none lies more than kMaxPlaneDeviation off it.
+std::optional<PlaneMatch> fit_plane(const Eigen::Vector3f* neighbours,
+                                    const Eigen::Vector3d& sensor_point) {
+  // n . x = -1 in the least-squares sense, then normalised: the plane n . x + d = 0. By the
+  // normal equations (3 x 3; a QR of the 5 x 3 system took a tenth of the mapping).
+  Eigen::Matrix<double, kNeighbours, 3> points;
+  for (int k = 0; k < kNeighbours; ++k)
+    points.row(k) = neighbours[k].cast<double>();
+  const Eigen::Matrix3d gram = points.transpose() * points;
+  Eigen::Vector3d normal = gram.ldlt().solve(-points.colwise().sum().transpose());
+  const double norm = normal.norm();
+  if (!(norm > 1e-9) || !std::isfinite(norm)) return std::nullopt;
+  normal /= norm;
+  const double offset = 1.0 / norm;
+  for (int k = 0; k < kNeighbours; ++k) {
+    if (std::fabs(normal.dot(points.row(k).transpose()) + offset) > kMaxPlaneDeviation) {
+      return std::nullopt;
+    }
+  }
+  return PlaneMatch{sensor_point, normal, offset};
+}
+
+// Each scan point's correspondence of one kind (a line on the map's corners or a plane on its
+// surfaces), fitted to its kNeighbours nearest map points when all lie within LOAM's 1 m. Later
+// iterations search again only for points that moved more than `keep_distance` and enough to
+// change that: the distance to a query's k-th nearest point changes by at most the distance the
+// query moved, so with the 5th and 6th nearest distances kept, a point that moved by m keeps its
+// neighbours while 5th + 2 m < 6th, its acceptance while 5th + m <= 1 m, and its rejection while
+// 5th - m > 1 m.
+template <class Match>
+class CorrespondenceCache {
+ public:
+  using Fit = std::optional<Match> (*)(const Eigen::Vector3f*, const Eigen::Vector3d&);
+
+  CorrespondenceCache(const Cloud& scan, const VoxelMap& map, Fit fit, float keep_distance)
+      : scan_(scan), map_(map), fit_(fit), keep_distance_(keep_distance), entries_(scan.size()) {}
+
+  // The correspondences with the scan placed by (rotation, translation), in scan order.
+  void update(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation,
+              std::vector<Match>& out) {
+    out.clear();
+    for (std::size_t i = 0; i < scan_.size(); ++i) {
+      const Eigen::Vector3d sensor_point = scan_[i].getVector3fMap().cast<double>();
+      const Eigen::Vector3f at = (rotation * sensor_point + translation).cast<float>();
+      Entry& entry = entries_[i];
+      if (!entry.searched || !still_valid(entry, at)) search(at, sensor_point, entry);
+      if (entry.match) out.push_back(*entry.match);
+    }
+  }
+
+ private:
+  struct Entry {
+    bool searched = false;
+    Eigen::Vector3f searched_at;
+    float fifth = 0.f;  // distance to the 5th nearest map point (kSearchRadius: none that near)
+    float sixth = 0.f;  // ... to the 6th (kSearchRadius: none that near)
+    std::optional<Match> match;
+  };
+
+  bool still_valid(const Entry& entry, const Eigen::Vector3f& at) const {
+    const float moved = (at - entry.searched_at).norm();
+    if (moved <= keep_distance_) return true;
+    if (entry.fifth - moved > kMaxNeighbourDistance) return true;
+    return entry.fifth + moved <= kMaxNeighbourDistance && entry.fifth + 2.f * moved < entry.sixth;
+  }
+
+  void search(const Eigen::Vector3f& at, const Eigen::Vector3d& sensor_point, Entry& entry) const {
+    Eigen::Vector3f neighbours[kNeighbours + 1];
+    float squared[kNeighbours + 1];
+    const int found =
+        map_.nearest(at, kNeighbours + 1, neighbours, squared, kSearchRadius * kSearchRadius);
+    entry.searched = true;
+    entry.searched_at = at;
+    entry.fifth = found >= kNeighbours ? std::sqrt(squared[kNeighbours - 1]) : kSearchRadius;
+    entry.sixth = found > kNeighbours ? std::sqrt(squared[kNeighbours]) : kSearchRadius;
+    const bool close = found >= kNeighbours &&
+                       squared[kNeighbours - 1] <= kMaxNeighbourDistance * kMaxNeighbourDistance;
+    entry.match = close ? fit_(neighbours, sensor_point) : std::nullopt;
+  }
+
+  const Cloud& scan_;
+  const VoxelMap& map_;
+  Fit fit_;
+  float keep_distance_;
+  std::vector<Entry> entries_;
+};
+
+// J^T J of the problem in the tangent space of (rotation, translation).
+Eigen::Matrix<double, 6, 6> normal_matrix(ceres::Problem& problem, double* rotation,
+                                          double* translation) {
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = {rotation, translation};
+  options.num_threads = 1;
+  ceres::CRSMatrix jacobian;
+  problem.Evaluate(options, nullptr, nullptr, nullptr, &jacobian);
+  Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 1, 6> row;
+  for (int r = 0; r < jacobian.num_rows; ++r) {
+    row.setZero();
+    for (int k = jacobian.rows[r]; k < jacobian.rows[r + 1]; ++k)
+      row(jacobian.cols[k]) = jacobian.values[k];
+    jtj += row.transpose() * row;
+  }
+  return jtj;
+}
+
+}  // namespace
+
+ScanToMapMatcher::ScanToMapMatcher(const MappingParams& params) : params_(params) {}
+
+MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfaces,
+                                       const LocalMap& map, const Eigen::Isometry3d& guess,
+                                       const std::optional<WeakDirectionPrior>& prior) const {
+  MapMatchResult result;
+  result.pose = guess;
+  if (map.empty()) return result;
+  // Matched in the frame the map's points are in; the result goes back to the map frame.
+  const Eigen::Isometry3d placed_guess = map.to_placement() * guess;
+  Eigen::Quaterniond rotation(placed_guess.linear());
+  Eigen::Vector3d translation = placed_guess.translation();
+  Eigen::Matrix<double, 6, 6> keep = Eigen::Matrix<double, 6, 6>::Identity();
+  Correspondences matches;
+  ceres::EigenQuaternionManifold quaternion_manifold;
+  const float keep_distance = static_cast<float>(params_.keep_correspondence_distance);
+  CorrespondenceCache<LineMatch> lines(corners, map.corner_map(), fit_line, keep_distance);
+  CorrespondenceCache<PlaneMatch> planes(surfaces, map.surface_map(), fit_plane, keep_distance);
+
+  for (int iteration = 0; iteration < params_.max_iterations; ++iteration) {
+    const Eigen::Matrix3d rotation_matrix = rotation.toRotationMatrix();
+    lines.update(rotation_matrix, translation, matches.lines);
+    planes.update(rotation_matrix, translation, matches.planes);
+    result.edge_matches = static_cast<int>(matches.lines.size());
+    result.plane_matches = static_cast<int>(matches.planes.size());
+    if (result.edge_matches + result.plane_matches < kMinMatches) break;
+
+    double q[4] = {rotation.x(), rotation.y(), rotation.z(), rotation.w()};
+    double t[3] = {translation.x(), translation.y(), translation.z()};
+    QuaternionRegistrationCost cost(matches, params_.huber_loss);
+    std::unique_ptr<ceres::CostFunction> prior_cost;
+    ceres::Problem::Options problem_options;
+    problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem problem(problem_options);
+    problem.AddParameterBlock(q, 4, &quaternion_manifold);
+    problem.AddParameterBlock(t, 3);
+    problem.AddResidualBlock(&cost, nullptr, q, t);
+    if (prior && prior->weight > 0.0) {
+      prior_cost.reset(new ceres::AutoDiffCostFunction<DirectionPrior, 1, 3>(new DirectionPrior{
+          placed_guess.linear() * prior->direction, placed_guess.translation(), prior->weight}));
+      problem.AddResidualBlock(prior_cost.get(), nullptr, t);
+    }
+    if (iteration == 0) {
+      // LOAM's degeneracy test: directions whose eigenvalue of J^T J is small get no update.
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(
+          normal_matrix(problem, q, t));
+      result.smallest_eigenvalue = solver.eigenvalues()(0);
+      Eigen::Matrix<double, 6, 6> projector = Eigen::Matrix<double, 6, 6>::Zero();
+      for (int k = 0; k < 6; ++k) {
+        const Eigen::Matrix<double, 6, 1> v = solver.eigenvectors().col(k);
+        if (solver.eigenvalues()(k) < params_.degeneracy_eigenvalue) {
+          ++result.degenerate_directions;
+        } else {
+          projector += v * v.transpose();
+        }
+      }
+      keep = projector;
+    }
+    const double q_before[4] = {q[0], q[1], q[2], q[3]};
+    const double t_before[3] = {t[0], t[1], t[2]};
+    ceres::Solver::Summary summary;
+    ceres::Solve(registration_solver_options(params_.solver_iterations), &problem, &summary);
+
+    // The step, in the tangent space, with its degenerate part removed.
+    Eigen::Matrix<double, 6, 1> step;
+    quaternion_manifold.Minus(q, q_before, step.data());
+    step.tail<3>() = Eigen::Vector3d(t[0] - t_before[0], t[1] - t_before[1], t[2] - t_before[2]);
+    if (result.degenerate_directions > 0) step = keep * step;
+    double q_after[4];
+    quaternion_manifold.Plus(q_before, step.data(), q_after);
+    rotation = Eigen::Quaterniond(q_after[3], q_after[0], q_after[1], q_after[2]).normalized();
+    translation = Eigen::Vector3d(t_before[0], t_before[1], t_before[2]) + step.tail<3>();
+    result.iterations = iteration + 1;
+    result.matched = true;
+    if (iteration >= 1 && step.head<3>().norm() < 5e-5 && step.tail<3>().norm() < 1e-3) break;
+  }
+  if (result.matched) {
+    Eigen::Isometry3d placed_pose = Eigen::Isometry3d::Identity();
+    placed_pose.linear() = rotation.toRotationMatrix();
+    placed_pose.translation() = translation;
+    result.pose = map.to_placement().inverse() * placed_pose;
+  }
+  return result;
+}
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,147 @@
+#include "adaptive_lego_loam/core/odometry/feature_extraction.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "adaptive_lego_loam/core/spatial/voxel_filter.h"
+
+namespace adaptive_lego_loam {
+namespace {
+
+constexpr int kNeighbours = 5;  // on each side, for smoothness and blocking
+
+CloudPoint to_cloud_point(const ScanPoint& p, int row) {
+  CloudPoint q;
+  q.x = p.x;
+  q.y = p.y;
+  q.z = p.z;
+  q.intensity = static_cast<float>(row);
+  return q;
+}
+
+}  // namespace
+
+void FeatureSet::clear() {
+  // Fresh clouds, not cleared ones: the odometry and keyframes keep the previous scan's.
+  for (CloudPtr* cloud : {&sharp, &less_sharp, &flat, &less_flat, &outliers}) {
+    cloud->reset(new Cloud);
+  }
+}
+
+FeatureExtractor::FeatureExtractor(const FeatureParams& params) : params_(params) {}
+
+void FeatureExtractor::compute_smoothness(const SegmentedCloud& cloud) {
+  const std::vector<float>& range = cloud.info.range;
+  const int size = static_cast<int>(range.size());
+  smoothness_.resize(size);
+  curvature_.assign(size, 0.f);
+  for (int i = 0; i < size; ++i)
+    smoothness_[i] = {0.f, i};
+  for (int i = kNeighbours; i + kNeighbours < size; ++i) {
+    float difference = -2.f * kNeighbours * range[i];
+    for (int j = 1; j <= kNeighbours; ++j)
+      difference += range[i - j] + range[i + j];
+    curvature_[i] = difference * difference;
+    smoothness_[i] = {curvature_[i], i};
+  }
+}
+
+void FeatureExtractor::mark_unreliable(const SegmentedCloud& cloud) {
+  const std::vector<float>& range = cloud.info.range;
+  const std::vector<uint32_t>& column = cloud.info.column;
+  const int size = static_cast<int>(range.size());
+  picked_.assign(size, 0);
+  const float occlusion = static_cast<float>(params_.occlusion_threshold);
+  const float parallel = static_cast<float>(params_.parallel_threshold);
+  for (int i = kNeighbours; i + kNeighbours + 1 < size; ++i) {
+    const float here = range[i], next = range[i + 1];
+    const int column_gap = std::abs(int(column[i + 1]) - int(column[i]));
+    if (column_gap < 10) {
+      // Of two neighbours far apart in range, the far side is partly hidden behind the near one.
+      if (here - next > occlusion) {
+        std::fill(picked_.begin() + i - kNeighbours, picked_.begin() + i + 1, 1);
+      } else if (next - here > occlusion) {
+        std::fill(picked_.begin() + i + 1, picked_.begin() + i + kNeighbours + 2, 1);
+      }
+    }
+    // A surface seen nearly edge-on: the range jumps on both sides.
+    const float before = std::fabs(range[i - 1] - here), after = std::fabs(next - here);
+    if (before > parallel * here && after > parallel * here) picked_[i] = 1;
+  }
+}
+
+void FeatureExtractor::block_neighbours(const SegmentedCloud& cloud, int index) {
+  const std::vector<uint32_t>& column = cloud.info.column;
+  const int size = static_cast<int>(column.size());
+  picked_[index] = 1;
+  for (int step : {1, -1}) {
+    for (int j = 1; j <= kNeighbours; ++j) {
+      const int other = index + step * j, previous = index + step * (j - 1);
+      if (other < 0 || other >= size) break;
+      if (std::abs(int(column[other]) - int(column[previous])) > 10) break;
+      picked_[other] = 1;
+    }
+  }
+}
+
+void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,
+                                int row, FeatureSet& out) {
+  const int start = cloud.info.start_ring_index[row], end = cloud.info.end_ring_index[row];
+  if (end - start < params_.sectors) return;
+  row_less_flat_.clear();
+  for (int sector = 0; sector < params_.sectors; ++sector) {
+    const int first = (start * (params_.sectors - sector) + end * sector) / params_.sectors;
+    const int last =
+        (start * (params_.sectors - 1 - sector) + end * (sector + 1)) / params_.sectors - 1;
+    if (last <= first) continue;
+    auto begin = smoothness_.begin() + first, finish = smoothness_.begin() + last + 1;
+    // Stable, with the index as tie-break: equal curvatures pick the same points every run.
+    std::sort(begin, finish, [](const Smoothness& a, const Smoothness& b) {
+      return a.value < b.value || (a.value == b.value && a.index < b.index);
+    });
+
+    int edges = 0;
+    for (auto it = finish; it != begin;) {
+      const int i = (--it)->index;
+      if (picked_[i] || curvature_[i] <= params_.edge_threshold || cloud.info.ground_flag[i]) {
+        continue;
+      }
+      if (++edges > params_.less_sharp_per_sector) break;
+      label_[i] = edges <= params_.sharp_per_sector ? 2 : 1;
+      if (label_[i] == 2) out.sharp->push_back(to_cloud_point(points[i], row));
+      out.less_sharp->push_back(to_cloud_point(points[i], row));
+      block_neighbours(cloud, i);
+    }
+
+    int flats = 0;
+    for (auto it = begin; it != finish; ++it) {
+      const int i = it->index;
+      if (picked_[i] || curvature_[i] >= params_.surface_threshold || !cloud.info.ground_flag[i]) {
+        continue;
+      }
+      label_[i] = -1;
+      out.flat->push_back(to_cloud_point(points[i], row));
+      block_neighbours(cloud, i);
+      if (++flats >= params_.flat_per_sector) break;
+    }
+    for (int i = first; i <= last; ++i) {
+      if (label_[i] <= 0) row_less_flat_.push_back(to_cloud_point(points[i], row));
+    }
+  }
+  *out.less_flat += *voxel_filter_(row_less_flat_, params_.less_flat_voxel);
+}
+
+void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,
+                               const std::vector<ScanPoint>& outliers, FeatureSet& out) {
+  out.clear();
+  compute_smoothness(cloud);
+  mark_unreliable(cloud);
+  label_.assign(cloud.info.range.size(), 0);
+  const int rows = static_cast<int>(cloud.info.start_ring_index.size());
+  for (int row = 0; row < rows; ++row)
+    pick_row(cloud, points, row, out);
+  for (const ScanPoint& p : cloud.outliers)
+    out.outliers->push_back(to_cloud_point(p, -1));
+}
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,153 @@
+#include "adaptive_lego_loam/core/odometry/scan_to_scan.h"
+
+#include <ceres/manifold.h>
+#include <ceres/problem.h>
+
+#include <cmath>
+
+#include "adaptive_lego_loam/core/odometry/residuals.h"
+
+namespace adaptive_lego_loam {
+
+namespace {
+
+constexpr int kCandidates = 15;
+
+Eigen::Vector3d position(const CloudPoint& p) {
+  return p.getVector3fMap().cast<double>();
+}
+
+int row_of(const CloudPoint& p) {
+  return static_cast<int>(std::lround(p.intensity));
+}
+
+// The feature point moved into the previous scan's frame by the current estimate.
+Eigen::Vector3f moved_point(const CloudPoint& p, const Eigen::Isometry3d& pose) {
+  return (pose * position(p)).cast<float>();
+}
+
+}  // namespace
+
+ScanToScanOdometry::ScanToScanOdometry(const OdometryParams& params) : params_(params) {}
+
+void ScanToScanOdometry::reset() {
+  previous_corners_.reset();
+  first_pair_ = true;
+  previous_surfaces_.reset();
+}
+
+void ScanToScanOdometry::find_edge_matches(const Cloud& sharp, const Eigen::Isometry3d& pose,
+                                           Correspondences& matches) const {
+  matches.lines.clear();
+  if (previous_corners_->size() < 2) return;
+  const float max_squared =
+      static_cast<float>(params_.max_match_distance * params_.max_match_distance);
+  uint32_t indices[kCandidates];
+  float squared[kCandidates];
+  for (const CloudPoint& p : sharp) {
+    const int found =
+        corner_tree_.nearest(moved_point(p, pose), kCandidates, indices, squared, max_squared);
+    if (found < 2) continue;
+    // The line runs through the nearest edge point and the nearest one on a neighbouring row.
+    const CloudPoint& nearest = (*previous_corners_)[indices[0]];
+    for (int k = 1; k < found; ++k) {
+      const CloudPoint& other = (*previous_corners_)[indices[k]];
+      const int row_gap = std::abs(row_of(other) - row_of(nearest));
+      if (row_gap == 0 || row_gap > 2) continue;
+      const Eigen::Vector3d along = position(nearest) - position(other);
+      if (along.norm() < 1e-6) continue;
+      matches.lines.push_back({position(p), position(nearest), along.normalized()});
+      break;
+    }
+  }
+}
+
+void ScanToScanOdometry::find_plane_matches(const Cloud& flat, const Eigen::Isometry3d& pose,
+                                            Correspondences& matches) const {
+  matches.planes.clear();
+  if (previous_surfaces_->size() < 3) return;
+  const float max_squared =
+      static_cast<float>(params_.max_match_distance * params_.max_match_distance);
+  uint32_t indices[kCandidates];
+  float squared[kCandidates];
+  for (const CloudPoint& p : flat) {
+    const int found =
+        surface_tree_.nearest(moved_point(p, pose), kCandidates, indices, squared, max_squared);
+    if (found < 3) continue;
+    // The plane runs through the nearest surface point, the nearest on its row and the nearest
+    // on a neighbouring row.
+    const CloudPoint& nearest = (*previous_surfaces_)[indices[0]];
+    const CloudPoint* same_row = nullptr;
+    const CloudPoint* other_row = nullptr;
+    for (int k = 1; k < found; ++k) {
+      const CloudPoint& candidate = (*previous_surfaces_)[indices[k]];
+      const int row_gap = std::abs(row_of(candidate) - row_of(nearest));
+      if (row_gap == 0 && !same_row) same_row = &candidate;
+      if (row_gap > 0 && row_gap <= 2 && !other_row) other_row = &candidate;
+    }
+    if (!same_row || !other_row) continue;
+    const Eigen::Vector3d a = position(nearest), b = position(*same_row), c = position(*other_row);
+    Eigen::Vector3d normal = (b - a).cross(c - a);
+    if (normal.norm() < 1e-6) continue;
+    normal.normalize();
+    matches.planes.push_back({position(p), normal, -normal.dot(a)});
+  }
+}
+
+void ScanToScanOdometry::solve(const Correspondences& matches, MatchKinds kinds,
+                               const std::vector<int>& fixed_entries, double* pose) const {
+  const std::size_t used = (kinds == MatchKinds::kPlanes ? 0 : matches.lines.size()) +
+                           (kinds == MatchKinds::kLines ? 0 : matches.planes.size());
+  if (used < 10) return;
+  EulerRegistrationCost cost(matches, kinds, params_.huber_loss);
+  ceres::Problem::Options options;
+  options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(options);
+  problem.AddResidualBlock(&cost, nullptr, pose);
+  if (!fixed_entries.empty()) {
+    problem.SetManifold(pose, new ceres::SubsetManifold(6, fixed_entries));
+  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(registration_solver_options(params_.solver_iterations), &problem, &summary);
+}
+
+OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
+                                                 const Eigen::Isometry3d& guess) {
+  OdometryResult result;
+  result.motion = guess;
+  if (previous_corners_ && previous_surfaces_) {
+    double pose[6];
+    pose_to_euler_vector(guess, pose);
+    Correspondences matches;
+    // The first pair starts from no motion at all, possibly far from the truth: more searches.
+    const int iterations = first_pair_ ? 4 * params_.max_iterations : params_.max_iterations;
+    first_pair_ = false;
+    for (int iteration = 0; iteration < iterations; ++iteration) {
+      const Eigen::Isometry3d before = euler_vector_to_pose(pose);
+      find_edge_matches(*current.sharp, before, matches);
+      find_plane_matches(*current.flat, before, matches);
+      if (params_.mode == OdometryMode::kTwoStep) {
+        solve(matches, MatchKinds::kPlanes, {2, 3, 4}, pose);  // ground planes: roll, pitch, z
+        solve(matches, MatchKinds::kLines, {0, 1, 5}, pose);   // edges: yaw, x, y
+      } else {
+        solve(matches, MatchKinds::kBoth, {}, pose);
+      }
+      result.iterations = iteration + 1;
+      const Eigen::Isometry3d change = before.inverse() * euler_vector_to_pose(pose);
+      const double angle = Eigen::AngleAxisd(change.linear()).angle();
+      // At least two searches: the first solve starts from stale matches.
+      if (iteration >= 1 && angle < 1e-4 && change.translation().norm() < 1e-3) break;
+    }
+    result.edge_matches = static_cast<int>(matches.lines.size());
+    result.plane_matches = static_cast<int>(matches.planes.size());
+    result.registered = result.edge_matches + result.plane_matches >= 10;
+    if (result.registered) result.motion = euler_vector_to_pose(pose);
+  }
+  previous_corners_ = current.less_sharp;
+  previous_surfaces_ = current.less_flat;
+  corner_tree_.build(previous_corners_);
+  surface_tree_.build(previous_surfaces_);
+  return result;
+}
+
+}  // namespace adaptive_lego_loam

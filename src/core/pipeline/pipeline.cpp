@@ -1,0 +1,59 @@
+#include "adaptive_lego_loam/core/pipeline/pipeline.h"
+
+namespace adaptive_lego_loam {
+
+std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
+                                                       const Degeneration& degeneration,
+                                                       double mu) {
+  if (params.weak_direction_prior <= 0.0 || !degeneration.valid) return std::nullopt;
+  const Eigen::Vector2d& weak = degeneration.weak_direction;
+  return WeakDirectionPrior{Eigen::Vector3d(weak.x(), weak.y(), 0.0),
+                            params.weak_direction_prior * mu};
+}
+
+std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
+                                                       const AmbientFilterResult& filtered) {
+  return weak_direction_prior(params, filtered.degeneration, filtered.mu);
+}
+
+Pipeline::Pipeline(const Config& config)
+    : config_(config),
+      filter_(config),
+      odometry_(config.sensor, config.features, config.odometry),
+      mapping_(config) {}
+
+const FrameResult& Pipeline::process(const Scan& scan) {
+  result_ = FrameResult();
+  result_.frame = frames_++;
+  result_.stamp = scan.stamp;
+  filter_.process(scan, filtered_);
+  result_.times.append(filtered_.times());
+  result_.valid_scan = filtered_.segmentation.image.stats().projected > 0;
+
+  odometry_.process(filtered_.segmentation.cloud, scan.has_time, odometry_out_);
+  result_.times.append(odometry_out_.times);
+  result_.odometry = odometry_out_.odometry;
+  result_.odometry_pose = odometry_out_.pose;
+  result_.deskewed_by_time_field = odometry_out_.deskewed_by_time_field;
+  const FeatureSet& features = odometry_out_.features;
+  result_.sharp = static_cast<int>(features.sharp->size());
+  result_.less_sharp = static_cast<int>(features.less_sharp->size());
+  result_.flat = static_cast<int>(features.flat->size());
+  result_.less_flat = static_cast<int>(features.less_flat->size());
+
+  mapping_.process(features, odometry_out_.pose, scan.stamp,
+                   weak_direction_prior(config_.mapping, filtered_), mapping_out_);
+  if (uses_mapped_motion(config_.odometry, config_.mapping)) {
+    odometry_.use_mapped_pose(mapping_out_.pose);
+  }
+  result_.times.append(mapping_out_.times);
+  result_.mapping = mapping_out_.match;
+  result_.pose = mapping_out_.pose;
+  result_.keyframe = mapping_out_.keyframe;
+  result_.motion_gated = mapping_out_.motion_gated;
+  result_.loop = mapping_out_.loop;
+  result_.loop_closed = mapping_out_.loop && mapping_out_.loop->accepted();
+  return result_;
+}
+
+}  // namespace adaptive_lego_loam

@@ -1,0 +1,136 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/ambient/kdtree_normals.h"
+#include "adaptive_lego_loam/core/ambient/skeleton.h"
+#include "adaptive_lego_loam/core/clustering/euclidean_clustering.h"
+#include "adaptive_lego_loam/io/scan_files.h"
+#include "support/synthetic.h"
+
+using namespace adaptive_lego_loam;
+using test::Box;
+using test::Scene;
+
+namespace {
+
+// HDL-64E-like layout, evenly spaced, ground possible in rows up to -3.5 deg.
+Config synthetic_config() {
+  Config config;
+  config.sensor = test::even_sensor(64, 1800, -24.9, 2.0);
+  config.sensor.ground_rows = 50;
+  config.sensor.max_range = 100.0;
+  return config;
+}
+
+Scene with_ground(std::vector<Box> boxes) {
+  Scene scene;
+  scene.has_ground = true;
+  scene.ground_z = -1.73;
+  scene.boxes = std::move(boxes);
+  return scene;
+}
+
+Scene corridor() {
+  return with_ground({{{-60, 2.8, -1.73}, {60, 3.0, 3.0}}, {{-60, -3.0, -1.73}, {60, -2.8, 3.0}}});
+}
+
+AmbientFilterResult filter(const Config& config, const Scan& scan) {
+  AmbientFilter ambient(config);
+  AmbientFilterResult result;
+  ambient.process(scan, result);
+  return result;
+}
+
+}  // namespace
+
+TEST(AmbientFilter, SameInputGivesBitIdenticalMu) {
+  const Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  const Scan scan =
+      read_kitti_bin(std::string(TEST_DATA_DIR) + "/kitti_seq07/velodyne/0000000001.bin");
+  AmbientFilter first(config), second(config);
+  AmbientFilterResult a, b, c;
+  first.process(scan, a);
+  second.process(scan, b);
+  first.reset();
+  first.process(scan, c);
+  ASSERT_TRUE(a.degeneration.valid);
+  EXPECT_EQ(std::memcmp(&a.mu, &b.mu, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&a.mu, &c.mu, sizeof(double)), 0);
+  EXPECT_EQ(a.degeneration.normals, b.degeneration.normals);
+  EXPECT_EQ(a.segmentation.cloud.points.size(), b.segmentation.cloud.points.size());
+  EXPECT_EQ(a.beta0_deg, b.beta0_deg);
+}
+
+TEST(AmbientFilter, ScanWithoutSkeletonKeepsPreviousBeta0) {
+  const Config config = synthetic_config();
+  AmbientFilter ambient(config);
+  AmbientFilterResult result;
+
+  Scan empty;
+  empty.has_ring = true;  // the synthetic sensor takes rows from the ring field
+  // Before any mu is known, an empty scan gets the strict default and no crash.
+  ambient.process(empty, result);
+  EXPECT_FALSE(result.degeneration.valid);
+  EXPECT_EQ(result.skeleton_points, 0);
+  EXPECT_DOUBLE_EQ(result.beta0_deg, config.ambient.beta0_max_deg);
+
+  ambient.process(test::render(config.sensor, corridor()), result);
+  ASSERT_TRUE(result.degeneration.valid);
+  const double corridor_beta0 = result.beta0_deg;
+  const double corridor_mu = result.mu;
+
+  // Only ground (the beams of the ground rows): no skeleton, mu unknown, the previous threshold
+  // stays.
+  Scan ground_only = test::render(config.sensor, with_ground({}));
+  ground_only.points.erase(
+      std::remove_if(ground_only.points.begin(), ground_only.points.end(),
+                     [&](const ScanPoint& p) { return p.ring > config.sensor.ground_rows; }),
+      ground_only.points.end());
+  ambient.process(ground_only, result);
+  EXPECT_FALSE(result.degeneration.valid);
+  EXPECT_EQ(result.skeleton_points, 0);
+  EXPECT_DOUBLE_EQ(result.beta0_deg, corridor_beta0);
+  EXPECT_DOUBLE_EQ(result.mu, corridor_mu);
+  EXPECT_GT(result.segmentation.cloud.points.size(), 0u) << "ground still feeds the odometry";
+
+  ambient.process(empty, result);
+  EXPECT_DOUBLE_EQ(result.beta0_deg, corridor_beta0);
+}
+
+TEST(AmbientFilter, FixedModeIsLeGoLoamWithThatBeta0) {
+  const Config kitti = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  const Scan scan =
+      read_kitti_bin(std::string(TEST_DATA_DIR) + "/kitti_seq07/velodyne/0000000002.bin");
+  for (double beta0 : {10.0, 30.0, 60.0}) {
+    Config config = kitti;
+    config.ambient.mode = Beta0Mode::kFixed;
+    config.ambient.fixed_beta0_deg = beta0;
+    const AmbientFilterResult fixed = filter(config, scan);
+    Segmenter segmenter(kitti.sensor, kitti.segmentation);
+    SegmentationResult lego;
+    segmenter.project_and_mark_ground(scan, lego);
+    segmenter.cluster_and_build(scan, beta0, lego);
+    EXPECT_EQ(fixed.beta0_deg, beta0);
+    EXPECT_FALSE(fixed.adaptive);
+    ASSERT_EQ(fixed.segmentation.cloud.points.size(), lego.cloud.points.size());
+    EXPECT_EQ(fixed.segmentation.clusters.label, lego.clusters.label);
+  }
+}
+
+TEST(AmbientFilter, LargerBeta0RemovesMoreOnRealScan) {
+  // The premise of the method on real data: 60 deg keeps fewer points than 10 deg.
+  const Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  const Scan scan =
+      read_kitti_bin(std::string(TEST_DATA_DIR) + "/kitti_seq07/velodyne/0000000000.bin");
+  Segmenter segmenter(config.sensor, config.segmentation);
+  SegmentationResult result;
+  segmenter.project_and_mark_ground(scan, result);
+  segmenter.cluster_and_build(scan, 10.0, result);
+  const int kept_at_10 = result.clusters.kept_points();
+  segmenter.cluster_and_build(scan, 60.0, result);
+  EXPECT_LT(result.clusters.kept_points(), 0.9 * kept_at_10);
+}

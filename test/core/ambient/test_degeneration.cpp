@@ -1,0 +1,121 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/ambient/kdtree_normals.h"
+#include "adaptive_lego_loam/core/ambient/skeleton.h"
+#include "adaptive_lego_loam/core/clustering/euclidean_clustering.h"
+#include "adaptive_lego_loam/io/scan_files.h"
+#include "support/synthetic.h"
+
+using namespace adaptive_lego_loam;
+using test::Box;
+using test::Scene;
+
+namespace {
+
+// HDL-64E-like layout, evenly spaced, ground possible in rows up to -3.5 deg.
+Config synthetic_config() {
+  Config config;
+  config.sensor = test::even_sensor(64, 1800, -24.9, 2.0);
+  config.sensor.ground_rows = 50;
+  config.sensor.max_range = 100.0;
+  return config;
+}
+
+Scene with_ground(std::vector<Box> boxes) {
+  Scene scene;
+  scene.has_ground = true;
+  scene.ground_z = -1.73;
+  scene.boxes = std::move(boxes);
+  return scene;
+}
+
+Scene corridor() {
+  return with_ground({{{-60, 2.8, -1.73}, {60, 3.0, 3.0}}, {{-60, -3.0, -1.73}, {60, -2.8, 3.0}}});
+}
+
+// A square room, 12 m a side.
+Scene box_room() {
+  return with_ground({{{5.8, -6, -1.73}, {6.0, 6, 3}},
+                      {{-6.0, -6, -1.73}, {-5.8, 6, 3}},
+                      {{-6, 5.8, -1.73}, {6, 6.0, 3}},
+                      {{-6, -6.0, -1.73}, {6, -5.8, 3}}});
+}
+
+// Four blocks of buildings at the corners of two crossing 8 m wide streets.
+Scene crossroads() {
+  std::vector<Box> blocks;
+  for (double sx : {-1.0, 1.0}) {
+    for (double sy : {-1.0, 1.0}) {
+      const Eigen::Vector3d a(sx * 4, sy * 4, -1.73), b(sx * 40, sy * 40, 8.0);
+      blocks.push_back({a.cwiseMin(b), a.cwiseMax(b)});
+    }
+  }
+  return with_ground(blocks);
+}
+
+AmbientFilterResult filter(const Config& config, const Scan& scan) {
+  AmbientFilter ambient(config);
+  AmbientFilterResult result;
+  ambient.process(scan, result);
+  return result;
+}
+
+}  // namespace
+
+TEST(Degeneration, CorridorIsDegenerateAlongItsAxis) {
+  const Config config = synthetic_config();
+  const AmbientFilterResult result = filter(config, test::render(config.sensor, corridor()));
+  ASSERT_TRUE(result.degeneration.valid);
+  EXPECT_GT(result.skeleton_points, 1000);
+  EXPECT_GT(result.degeneration.normals, 100);
+  EXPECT_GE(result.mu, 0.8);
+  EXPECT_GE(std::fabs(result.degeneration.weak_direction.x()), std::cos(10.0 * M_PI / 180.0))
+      << result.degeneration.weak_direction.transpose();
+  // A degenerate scene gets the lenient end of the threshold range.
+  EXPECT_LT(result.beta0_deg, 20.0);
+}
+
+TEST(Degeneration, BoxRoomAndCrossroadsAreWellConstrained) {
+  const Config config = synthetic_config();
+  for (const auto& [name, scene] :
+       {std::pair<const char*, Scene>{"box room", box_room()}, {"crossroads", crossroads()}}) {
+    SCOPED_TRACE(name);
+    const AmbientFilterResult result = filter(config, test::render(config.sensor, scene));
+    ASSERT_TRUE(result.degeneration.valid);
+    EXPECT_GT(result.degeneration.normals, 100);
+    EXPECT_LE(result.mu, 0.3);
+    EXPECT_GT(result.beta0_deg, 45.0);
+  }
+}
+
+TEST(Degeneration, HandMadeNormals) {
+  auto normal = [](float x, float y, float z, float weight) {
+    NormalFeature n;
+    n.normal = Eigen::Vector3f(x, y, z).normalized();
+    n.weight = weight;
+    return n;
+  };
+  // All normals along +-y: k infinite, mu = 1, weak direction x.
+  Degeneration d = degeneration_from_normals({normal(0, 1, 0, 2), normal(0, -1, 0, 1)});
+  EXPECT_TRUE(d.valid);
+  EXPECT_DOUBLE_EQ(d.mu, 1.0);
+  EXPECT_NEAR(std::fabs(d.weak_direction.x()), 1.0, 1e-12);
+  // Equal weight along x and y: k = 1, mu = 0.
+  d = degeneration_from_normals({normal(1, 0, 0, 1), normal(0, 1, 0, 1)});
+  EXPECT_NEAR(d.mu, 0.0, 1e-12);
+  // Three along y, one along x (equal weights): k = 3, mu = 2/3.
+  d = degeneration_from_normals(
+      {normal(0, 1, 0, 1), normal(0, -1, 0, 1), normal(0, 1, 0, 1), normal(1, 0, 0, 1)});
+  EXPECT_NEAR(d.mu, 2.0 / 3.0, 1e-12);
+  // Only vertical normals (a flat ceiling): nothing horizontal, mu unknown.
+  EXPECT_FALSE(degeneration_from_normals({normal(0, 0, 1, 1)}).valid);
+  EXPECT_FALSE(degeneration_from_normals({}).valid);
+  EXPECT_DOUBLE_EQ(beta0_from_mu(1.0, 10, 60), 10.0);
+  EXPECT_DOUBLE_EQ(beta0_from_mu(0.0, 10, 60), 60.0);
+  EXPECT_DOUBLE_EQ(beta0_from_mu(0.5, 10, 60), 35.0);
+}

@@ -1,0 +1,78 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/ambient/kdtree_normals.h"
+#include "adaptive_lego_loam/core/ambient/skeleton.h"
+#include "adaptive_lego_loam/core/clustering/euclidean_clustering.h"
+#include "adaptive_lego_loam/io/scan_files.h"
+#include "support/synthetic.h"
+
+using namespace adaptive_lego_loam;
+using test::Box;
+using test::Scene;
+
+namespace {
+
+// HDL-64E-like layout, evenly spaced, ground possible in rows up to -3.5 deg.
+Config synthetic_config() {
+  Config config;
+  config.sensor = test::even_sensor(64, 1800, -24.9, 2.0);
+  config.sensor.ground_rows = 50;
+  config.sensor.max_range = 100.0;
+  return config;
+}
+
+std::map<int, int> cluster_sizes_of(const ClusterLabels& labels, const RangeImage& image,
+                                    const std::function<bool(const ScanPoint&)>& select) {
+  std::map<int, int> sizes;
+  for (int cell = 0; cell < image.size(); ++cell) {
+    if (image.occupied(cell) && select(image.point(cell))) ++sizes[labels.label[cell]];
+  }
+  return sizes;
+}
+
+}  // namespace
+
+TEST(EuclideanClustering, ThresholdGrowsWithRange) {
+  const Config config = synthetic_config();
+  // Two boxes 0.5 m apart at 5 m ahead, and a wall 20 m wide seen from 40 m behind.
+  Scene scene;
+  scene.boxes = {{{5.0, -1.2, -1.0}, {5.5, -0.25, 1.0}},
+                 {{5.0, 0.25, -1.0}, {5.5, 1.2, 1.0}},
+                 {{-40.5, -10.0, -2.0}, {-40.0, 10.0, 3.0}}};
+  const Scan scan = test::render(config.sensor, scene);
+  RangeProjector projector(config.sensor);
+  RangeImage image;
+  projector.project(scan, image);
+
+  EuclideanClusteringParams adaptive;
+  ClusterLabels labels;
+  EuclideanClustering(projector.geometry(), adaptive).cluster(image, {}, labels);
+  // The boxes' front faces (their inner sides, seen edge-on, are other clusters).
+  auto near_left = [](const ScanPoint& p) { return p.x > 0 && p.x < 5.01 && p.y < 0; };
+  auto near_right = [](const ScanPoint& p) { return p.x > 0 && p.x < 5.01 && p.y > 0; };
+  auto far_wall = [](const ScanPoint& p) { return p.x < -30; };
+  const auto left = cluster_sizes_of(labels, image, near_left);
+  const auto right = cluster_sizes_of(labels, image, near_right);
+  const auto wall = cluster_sizes_of(labels, image, far_wall);
+  ASSERT_EQ(left.size(), 1u);
+  ASSERT_EQ(right.size(), 1u);
+  EXPECT_NE(left.begin()->first, right.begin()->first);
+  EXPECT_EQ(wall.size(), 1u) << "the far wall must stay one cluster";
+
+  // A fixed 0.1 m threshold keeps the near boxes apart but shatters the far wall.
+  EuclideanClusteringParams fixed;
+  fixed.fixed_threshold = 0.1;
+  EuclideanClustering(projector.geometry(), fixed).cluster(image, {}, labels);
+  EXPECT_GT(cluster_sizes_of(labels, image, far_wall).size(), 10u);
+  EXPECT_EQ(cluster_sizes_of(labels, image, near_left).size(), 1u);
+
+  // The adaptive threshold is gamma * sin(alpha) * |OB|.
+  EuclideanClustering clustering(projector.geometry(), adaptive);
+  const double column_step = 2 * M_PI / 1800;
+  EXPECT_NEAR(clustering.threshold(10, 0, 2, 40.0), 1.2 * std::sin(2 * column_step) * 40.0, 1e-9);
+}

@@ -1,0 +1,161 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "adaptive_lego_loam/core/common/params.h"
+
+using namespace adaptive_lego_loam;
+
+namespace {
+
+std::string error_of(const std::string& yaml) {
+  try {
+    parse_config(yaml, "test.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kMinimal = "sensor:\n  rows: 16\n  columns: 1800\n";
+
+}  // namespace
+
+TEST(Params, ShippedConfigsLoad) {
+  for (const char* name : {"vlp16", "hdl32", "hdl64e", "kitti", "kitti_16rings"}) {
+    const std::string path = std::string(CONFIG_DIR) + "/" + name + ".yaml";
+    SCOPED_TRACE(path);
+    const Config config = load_config(path);
+    EXPECT_EQ(static_cast<int>(config.sensor.beam_angles_deg.size()), config.sensor.rows);
+    EXPECT_EQ(config.source, path);
+  }
+  const Config kitti = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  EXPECT_EQ(kitti.sensor.rows, 64);
+  EXPECT_EQ(kitti.sensor.row_source, RowSource::kElevation);
+  EXPECT_EQ(kitti.sensor.beam_offsets_m.size(), 64u);
+  EXPECT_TRUE(kitti.sensor.deskewed);
+  const Config thinned = load_config(std::string(CONFIG_DIR) + "/kitti_16rings.yaml");
+  ASSERT_EQ(thinned.sensor.ring_to_row.size(), 64u);
+  EXPECT_EQ(std::count(thinned.sensor.ring_to_row.begin(), thinned.sensor.ring_to_row.end(), -1),
+            48);
+}
+
+TEST(Params, RingToRowBelowMinusOneIsRejected) {
+  const std::string error = error_of(std::string(kMinimal) + "  ring_to_row: [0, -2, 1]\n");
+  EXPECT_NE(error.find("sensor.ring_to_row"), std::string::npos) << error;
+}
+
+TEST(Params, EvenBeamsFromVerticalLimits) {
+  const Config config = load_config(std::string(CONFIG_DIR) + "/vlp16.yaml");
+  ASSERT_EQ(config.sensor.beam_angles_deg.size(), 16u);
+  EXPECT_DOUBLE_EQ(config.sensor.beam_angles_deg.front(), -15.0);
+  EXPECT_DOUBLE_EQ(config.sensor.beam_angles_deg.back(), 15.0);
+  EXPECT_DOUBLE_EQ(config.sensor.beam_angles_deg[1], -13.0);
+}
+
+TEST(Params, OutOfRangeValueNamesKeyAndRange) {
+  const std::string error = error_of("sensor:\n  rows: -3\n");
+  EXPECT_NE(error.find("test.yaml"), std::string::npos) << error;
+  EXPECT_NE(error.find("sensor.rows"), std::string::npos) << error;
+  EXPECT_NE(error.find("[1, 512]"), std::string::npos) << error;
+  EXPECT_NE(error.find("test.yaml: sensor.rows = -3 is out of range"), std::string::npos) << error;
+}
+
+TEST(Params, WrongTypeNamesKey) {
+  const std::string error = error_of(std::string(kMinimal) + "segmentation:\n  beta0_deg: steep\n");
+  EXPECT_NE(error.find("segmentation.beta0_deg"), std::string::npos) << error;
+  EXPECT_NE(error.find("a number"), std::string::npos) << error;
+}
+
+TEST(Params, UnknownKeyAndSectionAreErrors) {
+  EXPECT_NE(error_of(std::string(kMinimal) + "  colums: 3\n").find("sensor.colums"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "mapping_typo:\n  a: 1\n").find("mapping_typo"),
+            std::string::npos);
+}
+
+TEST(Params, BeamTableMustMatchRowsAndAscend) {
+  EXPECT_NE(error_of("sensor:\n  rows: 3\n  beam_angles_deg: [-2, 0]\n").find("one per row"),
+            std::string::npos);
+  EXPECT_NE(error_of("sensor:\n  rows: 3\n  beam_angles_deg: [-2, 1, 0]\n").find("ascending"),
+            std::string::npos);
+}
+
+TEST(Params, ChoiceListsAllowedValues) {
+  const std::string error = error_of(std::string(kMinimal) + "  row_source: laser\n");
+  EXPECT_NE(error.find("auto, ring, elevation"), std::string::npos) << error;
+}
+
+TEST(Params, Beta0BoundsMustBeOrdered) {
+  const std::string error = error_of(std::string(kMinimal) +
+                                     "ambient_filter:\n  beta0_min_deg: 50\n  beta0_max_deg: 20\n");
+  EXPECT_NE(error.find("ambient_filter.beta0_min_deg"), std::string::npos) << error;
+}
+
+TEST(Params, MissingFileAndBrokenYaml) {
+  try {
+    load_config("/nonexistent/x.yaml");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/x.yaml"), std::string::npos);
+  }
+  EXPECT_NE(error_of("sensor: [1, 2\n").find("not valid YAML"), std::string::npos);
+}
+
+TEST(Params, LoopClosureSection) {
+  const Config shipped = load_config(std::string(CONFIG_DIR) + "/vlp16.yaml");
+  EXPECT_TRUE(shipped.loop_closure.enabled);
+  EXPECT_DOUBLE_EQ(shipped.loop_closure.search_radius, 7.0);
+  EXPECT_DOUBLE_EQ(shipped.loop_closure.min_time_gap, 30.0);
+  EXPECT_EQ(shipped.loop_closure.neighbourhood_keyframes, 25);
+  EXPECT_DOUBLE_EQ(shipped.loop_closure.fitness_threshold, 0.3);
+  EXPECT_EQ(shipped.loop_closure.robust_loss, RobustLoss::kCauchy);
+  EXPECT_EQ(shipped.loop_closure.map_points_per_scan, 20000);
+  EXPECT_EQ(shipped.loop_closure.icp_iterations_per_scan, 2);
+  EXPECT_EQ(shipped.loop_closure.graph_iterations_per_scan, 1);
+
+  const Config config = parse_config(std::string(kMinimal) +
+                                         "loop_closure:\n  enabled: false\n  search_radius: 12\n"
+                                         "  robust_loss: huber\n  robust_loss_scale: 1.5\n"
+                                         "  loop_sigma_rotation_deg: 2\n",
+                                     "test.yaml");
+  EXPECT_FALSE(config.loop_closure.enabled);
+  EXPECT_DOUBLE_EQ(config.loop_closure.search_radius, 12.0);
+  EXPECT_EQ(config.loop_closure.robust_loss, RobustLoss::kHuber);
+  EXPECT_DOUBLE_EQ(config.loop_closure.robust_loss_scale, 1.5);
+  EXPECT_DOUBLE_EQ(config.loop_closure.loop_sigma_rotation_deg, 2.0);
+  EXPECT_DOUBLE_EQ(config.loop_closure.min_time_gap, LoopClosureParams().min_time_gap);
+
+  const std::string negative_sigma =
+      error_of(std::string(kMinimal) + "loop_closure:\n  odometry_sigma_translation: -1\n");
+  EXPECT_NE(negative_sigma.find("loop_closure.odometry_sigma_translation"), std::string::npos)
+      << negative_sigma;
+  EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  icp_max_iterations: 0\n")
+                .find("loop_closure.icp_max_iterations"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  icp_iterations_per_scan: 0\n")
+                .find("loop_closure.icp_iterations_per_scan"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  robust_loss: tukey\n")
+                .find("cauchy, huber, none"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "loop_closure:\n  search_radus: 5\n")
+                .find("loop_closure.search_radus"),
+            std::string::npos);
+}
+
+TEST(Params, ClusteringBenchmarkMinClusterPoints) {
+  const Config kitti = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  EXPECT_EQ(kitti.clustering_benchmark.min_cluster_points, 1);
+  const Config set = parse_config(
+      std::string(kMinimal) + "clustering_benchmark:\n  min_cluster_points: 30\n", "test.yaml");
+  EXPECT_EQ(set.clustering_benchmark.min_cluster_points, 30);
+  const std::string zero =
+      error_of(std::string(kMinimal) + "clustering_benchmark:\n  min_cluster_points: 0\n");
+  EXPECT_NE(zero.find("clustering_benchmark.min_cluster_points"), std::string::npos) << zero;
+  EXPECT_NE(zero.find("[1, 1000000]"), std::string::npos) << zero;
+  const std::string typo =
+      error_of(std::string(kMinimal) + "clustering_benchmark:\n  min_cluster_size: 5\n");
+  EXPECT_NE(typo.find("clustering_benchmark.min_cluster_size"), std::string::npos) << typo;
+}

@@ -1,0 +1,73 @@
+// The building blocks of odometry and mapping: the KD-tree and the voxel map against a brute-force
+// search, and the registration cost functions' analytic Jacobians against finite differences.
+
+#include <gtest/gtest.h>
+#include <pcl/filters/voxel_grid.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "adaptive_lego_loam/core/mapping/scan_to_map.h"
+#include "adaptive_lego_loam/core/odometry/residuals.h"
+#include "adaptive_lego_loam/core/spatial/kdtree.h"
+#include "adaptive_lego_loam/core/spatial/voxel_filter.h"
+#include "adaptive_lego_loam/core/spatial/voxel_map.h"
+
+using namespace adaptive_lego_loam;
+
+namespace {
+
+// A corner of a room in the map frame: floor, two walls (every 0.1 m).
+CloudPtr room_corner() {
+  CloudPtr cloud(new Cloud);
+  auto add = [&cloud](float x, float y, float z) {
+    CloudPoint p;
+    p.x = x;
+    p.y = y;
+    p.z = z;
+    cloud->push_back(p);
+  };
+  for (float u = -4.f; u <= 4.f; u += 0.1f) {
+    for (float v = -4.f; v <= 4.f; v += 0.1f) {
+      add(u, v, -1.5f);
+      if (v >= -1.5f && v <= 2.f) add(5.f, u, v);
+      if (v >= -1.5f && v <= 2.f) add(u, 4.f, v);
+    }
+  }
+  return cloud;
+}
+
+}  // namespace
+
+TEST(ScanToMap, MatchesThroughTheOldPlacementAfterALoop) {
+  MappingParams params;
+  params.local_map_lag_keyframes = 0;
+  params.max_iterations = 5;
+  LocalMap map(params);
+  Keyframe keyframe;
+  keyframe.corners.reset(new Cloud);
+  keyframe.surfaces = room_corner();
+  map.update({keyframe}, Eigen::Vector3d::Zero());
+
+  Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
+  correction.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  correction.translation() = Eigen::Vector3d(2.0, -1.0, 0.1);
+  keyframe.pose = correction * keyframe.pose;
+  map.keyframes_moved(correction);
+  ASSERT_FALSE(map.to_placement().isApprox(Eigen::Isometry3d::Identity()));
+
+  // The sensor 0.5 m from the map origin, in the new frame; the scan sees the room from there.
+  Eigen::Isometry3d old_frame_pose = Eigen::Isometry3d::Identity();
+  old_frame_pose.translation() = Eigen::Vector3d(0.5, 0.2, 0.0);
+  const Eigen::Isometry3d truth = correction * old_frame_pose;
+  const CloudPtr scan =
+      voxel_filter(*transform_cloud(*room_corner(), old_frame_pose.inverse()), 0.3);
+  Eigen::Isometry3d guess = truth;
+  guess.translation() += Eigen::Vector3d(0.08, -0.06, 0.03);
+  const MapMatchResult result = ScanToMapMatcher(params).match(Cloud(), *scan, map, guess);
+  ASSERT_TRUE(result.matched);
+  EXPECT_LT((result.pose.translation() - truth.translation()).norm(), 0.01);
+  EXPECT_LT(Eigen::AngleAxisd(result.pose.linear().transpose() * truth.linear()).angle(), 0.002);
+}

@@ -1,0 +1,120 @@
+// De-skewing: a sweep during which the sensor moved, each point measured from where the sensor was
+// when it fired, is moved into the frame of the sweep's end.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "adaptive_lego_loam/core/odometry/deskew.h"
+#include "support/synthetic.h"
+
+using namespace adaptive_lego_loam;
+using test::Box;
+using test::Scene;
+
+namespace {
+
+// A room with pillars, walls 10-15 m away: a sweep of it sees every azimuth.
+Scene room() {
+  Scene scene;
+  scene.has_ground = true;
+  scene.boxes = {
+      {{14.0, -15.0, -2.0}, {14.5, 15.0, 4.0}}, {{-15.5, -15.0, -2.0}, {-15.0, 15.0, 4.0}},
+      {{-15.0, 11.0, -2.0}, {14.0, 11.5, 4.0}}, {{-15.0, -12.5, -2.0}, {14.0, -12.0, 4.0}},
+      {{4.0, 3.0, -2.0}, {4.6, 3.6, 3.0}},      {{-6.0, -5.0, -2.0}, {-5.4, -4.4, 3.0}}};
+  return scene;
+}
+
+// 1.2 m forward, 0.3 m sideways and 6 deg of yaw over one sweep: a car at 12 m/s in a bend.
+Eigen::Isometry3d sweep_motion() {
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  motion.linear() =
+      Eigen::AngleAxisd(6.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  motion.translation() = Eigen::Vector3d(1.2, 0.3, 0.02);
+  return motion;
+}
+
+struct Sweep {
+  SensorParams sensor = test::even_sensor(16, 900, -15.0, 15.0);
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d motion = sweep_motion();
+  std::vector<Eigen::Vector3d> world_hits;
+  Scan scan;
+  Sweep() {
+    start.translation() = Eigen::Vector3d(0.5, -0.4, 0.0);
+    scan = test::render_sweep(sensor, room(), start, motion, world_hits);
+  }
+  // Each point's distance from where the straight sweep (all from its end) has it.
+  std::vector<double> errors(const std::vector<ScanPoint>& points) const {
+    const Eigen::Isometry3d end_from_world = (start * motion).inverse();
+    std::vector<double> errors;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector3d p(points[i].x, points[i].y, points[i].z);
+      errors.push_back((p - end_from_world * world_hits[i]).norm());
+    }
+    return errors;
+  }
+};
+
+double largest(const std::vector<double>& values) {
+  double most = 0.0;
+  for (double v : values)
+    most = std::max(most, v);
+  return most;
+}
+
+double start_azimuth(const Scan& scan) {
+  return std::atan2(scan.points.front().y, scan.points.front().x);
+}
+
+}  // namespace
+
+TEST(Deskew, TimeFieldStraightensADistortedSweep) {
+  const Sweep sweep;
+  ASSERT_GT(sweep.scan.points.size(), 5000u);
+  std::vector<float> fractions;
+  ASSERT_TRUE(sweep_fractions(sweep.scan.points, true, start_azimuth(sweep.scan),
+                              sweep.sensor.scan_period, fractions));
+  std::vector<ScanPoint> points = sweep.scan.points;
+  EXPECT_GT(largest(sweep.errors(points)), 1.0);  // as measured, points are up to ~1 m off
+  deskew_to_sweep_end(sweep.motion, fractions, points);
+  EXPECT_LT(largest(sweep.errors(points)), 1e-3);
+}
+
+TEST(Deskew, AzimuthGivesTheFiringOrderWithoutATimeField) {
+  const Sweep sweep;
+  std::vector<float> fractions;
+  // No time field: the fraction is how far the head has turned (clockwise) since the first point.
+  // A point is measured in the frame the sensor had when it fired, so its azimuth is its beam's.
+  EXPECT_FALSE(sweep_fractions(sweep.scan.points, false, start_azimuth(sweep.scan),
+                               sweep.sensor.scan_period, fractions));
+  double worst = 0.0;
+  for (std::size_t i = 0; i < fractions.size(); ++i) {
+    const double fired = sweep.scan.points[i].time / sweep.sensor.scan_period;
+    worst = std::max(worst, std::fabs(fractions[i] - fired));
+  }
+  EXPECT_LT(worst, 1e-5);
+  std::vector<ScanPoint> points = sweep.scan.points;
+  deskew_to_sweep_end(sweep.motion, fractions, points);
+  EXPECT_LT(largest(sweep.errors(points)), 1e-3);
+}
+
+TEST(Deskew, ImplausibleTimeFieldFallsBackToTheAzimuth) {
+  const Sweep sweep;
+  std::vector<ScanPoint> points = sweep.scan.points;
+  for (ScanPoint& p : points)
+    p.time *= 10.f;  // a span of ten scan periods: not seconds from the sweep's start
+  std::vector<float> fractions;
+  EXPECT_FALSE(sweep_fractions(points, true, start_azimuth(sweep.scan), sweep.sensor.scan_period,
+                               fractions));
+}
+
+TEST(Deskew, InterpolatedMotionRunsFromIdentityToTheWholeMotion) {
+  const Eigen::Isometry3d motion = sweep_motion();
+  EXPECT_TRUE(interpolate_motion(motion, 0.0).isApprox(Eigen::Isometry3d::Identity(), 1e-12));
+  EXPECT_TRUE(interpolate_motion(motion, 1.0).isApprox(motion, 1e-12));
+  const Eigen::Isometry3d half = interpolate_motion(motion, 0.5);
+  EXPECT_TRUE((half * half).linear().isApprox(motion.linear(), 1e-12));
+  EXPECT_TRUE(half.translation().isApprox(0.5 * motion.translation(), 1e-12));
+}

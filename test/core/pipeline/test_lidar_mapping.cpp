@@ -1,0 +1,115 @@
+// Scan-to-map's guess when the scan-to-scan motion is implausible (MappingParams'
+// max_motion_change): on a highway whose guard-rail posts repeat every 2 m, a truck driving along
+// drags the scan-to-scan estimate to standstill, and scan-to-map, started there, agrees with it.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
+
+using namespace adaptive_lego_loam;
+
+namespace {
+
+constexpr double kPostSpacing = 2.0;  // m, as real guard-rail posts
+constexpr double kSpeed = 2.0;        // m per scan: each scan sees the same picture
+constexpr double kRange = 40.0;       // m: what a scan sees ahead and behind
+
+void add(Cloud& cloud, double x, double y, double z) {
+  CloudPoint point;
+  point.x = static_cast<float>(x);
+  point.y = static_cast<float>(y);
+  point.z = static_cast<float>(z);
+  point.intensity = 0.0f;
+  cloud.push_back(point);
+}
+
+// The features of a straight road seen from x = `sensor_x`, in the sensor frame: the road
+// surface, a rail on each side (surfaces), a post every kPostSpacing behind each rail (edges).
+FeatureSet highway_features(double sensor_x) {
+  FeatureSet features;
+  const double first = std::ceil((sensor_x - kRange) / kPostSpacing) * kPostSpacing;
+  for (double x = first; x <= sensor_x + kRange; x += kPostSpacing) {
+    for (double side : {-1.0, 1.0}) {
+      for (double z = -1.7; z <= -0.7; z += 0.1)
+        add(*features.less_sharp, x - sensor_x, side * 6.3, z);
+    }
+  }
+  for (double x = first; x <= sensor_x + kRange; x += 0.5) {
+    for (double y = -5.5; y <= 5.5; y += 0.5)
+      add(*features.less_flat, x - sensor_x, y, -1.7);
+    for (double side : {-1.0, 1.0}) {
+      for (double z = -1.2; z <= -0.9; z += 0.1)
+        add(*features.less_flat, x - sensor_x, side * 6.0, z);
+    }
+  }
+  *features.sharp = *features.less_sharp;
+  *features.flat = *features.less_flat;
+  return features;
+}
+
+Eigen::Isometry3d along_x(double x) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation().x() = x;
+  return pose;
+}
+
+// Mapping without loop closure, of a sensor whose sweeps come de-skewed.
+Config gated_config(double max_motion_change) {
+  Config config;
+  config.mapping.max_motion_change = max_motion_change;
+  config.mapping.max_motion_change_deg = 5.0;
+  config.loop_closure.enabled = false;
+  config.sensor.deskewed = true;
+  return config;
+}
+
+// Drives at kSpeed for `scans` scans; the odometry reports standstill on the scan `stalled`.
+// Returns the mapped x of that scan and whether the gate fired there.
+std::pair<double, bool> mapped_x_when_odometry_stalls(const Config& config, int stalled) {
+  LidarMapping mapping(config);
+  MappingOutput out;
+  double odometry_x = 0.0;
+  for (int scan = 0; scan <= stalled; ++scan) {
+    if (scan > 0 && scan != stalled) odometry_x += kSpeed;
+    mapping.process(highway_features(scan * kSpeed), along_x(odometry_x), 0.1 * scan, std::nullopt,
+                    out);
+    if (scan < stalled) {
+      EXPECT_FALSE(out.motion_gated) << "scan " << scan;
+    }
+  }
+  return {out.pose.translation().x(), out.motion_gated};
+}
+
+}  // namespace
+
+TEST(MotionGate, StalledOdometryOnRepeatingPostsKeepsTheVelocity) {
+  const int stalled = 6;
+  const auto [gated_x, gated] = mapped_x_when_odometry_stalls(gated_config(0.3), stalled);
+  EXPECT_TRUE(gated);
+  EXPECT_NEAR(gated_x, stalled * kSpeed, 0.05);
+}
+
+TEST(MotionGate, WithoutTheGateTheMapAgreesWithTheStalledOdometry) {
+  // Shows what the gate is for: the repeating scene matches just as well one post behind.
+  const int stalled = 6;
+  const auto [x, gated] = mapped_x_when_odometry_stalls(gated_config(0.0), stalled);
+  EXPECT_FALSE(gated);
+  EXPECT_NEAR(x, (stalled - 1) * kSpeed, 0.05);
+}
+
+TEST(MotionGate, SmoothAccelerationPassesTheGate) {
+  LidarMapping mapping(gated_config(0.3));
+  MappingOutput out;
+  double x = 0.0, speed = 1.0;
+  for (int scan = 0; scan < 8; ++scan) {
+    if (scan > 0) {
+      x += speed;
+      speed += 0.2;  // 20 m/s^2 at 10 Hz: hard, but a vehicle can
+    }
+    mapping.process(highway_features(x), along_x(x), 0.1 * scan, std::nullopt, out);
+    EXPECT_FALSE(out.motion_gated) << "scan " << scan;
+    EXPECT_NEAR(out.pose.translation().x(), x, 0.05) << "scan " << scan;
+  }
+}

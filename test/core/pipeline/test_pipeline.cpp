@@ -1,0 +1,78 @@
+#include <gtest/gtest.h>
+
+#include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/eval/metrics.h"
+#include "adaptive_lego_loam/io/pose_files.h"
+#include "adaptive_lego_loam/io/scan_files.h"
+
+using namespace adaptive_lego_loam;
+
+namespace {
+
+const std::string kSequence = std::string(TEST_DATA_DIR) + "/kitti_seq07";
+
+std::vector<Eigen::Isometry3d> run(const Config& config,
+                                   std::vector<FrameResult>* frames = nullptr) {
+  Pipeline pipeline(config);
+  const std::vector<double> times = read_kitti_times(kSequence + "/times.txt");
+  const auto files = list_scan_files(kSequence + "/velodyne");
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    Scan scan = read_kitti_bin(files[i]);
+    scan.stamp = times[i];
+    const FrameResult& result = pipeline.process(scan);
+    if (frames) frames->push_back(result);
+  }
+  return pipeline.trajectory();
+}
+
+std::vector<Eigen::Isometry3d> lidar_ground_truth() {
+  return camera_to_lidar_poses(read_kitti_poses(kSequence + "/poses.txt"),
+                               read_kitti_calib_tr(kSequence + "/calib.txt"));
+}
+
+}  // namespace
+
+TEST(Pipeline, KittiSeq07PerFrameErrorUnder3cm) {
+  const Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  std::vector<FrameResult> frames;
+  const auto estimate = run(config, &frames);
+  const auto truth = lidar_ground_truth();
+  ASSERT_EQ(estimate.size(), truth.size());
+  const RelativePoseError rpe = relative_pose_error(estimate, truth);
+  for (std::size_t i = 0; i < rpe.translation_m.size(); ++i) {
+    SCOPED_TRACE("frame " + std::to_string(i + 1));
+    EXPECT_LT(rpe.translation_m[i], 0.03);
+    EXPECT_LT(rpe.rotation_deg[i], 0.5);
+    EXPECT_TRUE(frames[i + 1].odometry.registered);
+  }
+  // Mapping ran on every scan after the first.
+  for (std::size_t i = 1; i < frames.size(); ++i)
+    EXPECT_TRUE(frames[i].mapping.matched);
+  std::printf("RPE per frame (m):");
+  for (double e : rpe.translation_m)
+    std::printf(" %.4f", e);
+  std::printf("\nATE RMSE %.4f m\n", absolute_trajectory_error(estimate, truth).rmse_m);
+}
+
+TEST(Pipeline, TwoStepAndJointOdometryBothTrack) {
+  Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  config.mapping.enabled = false;  // the odometry alone
+  const auto truth = lidar_ground_truth();
+  for (OdometryMode mode : {OdometryMode::kTwoStep, OdometryMode::kJoint}) {
+    config.odometry.mode = mode;
+    const RelativePoseError rpe = relative_pose_error(run(config), truth);
+    SCOPED_TRACE(mode == OdometryMode::kJoint ? "joint" : "two-step");
+    EXPECT_LT(*rpe.translation_rmse_m, 0.05);
+    std::printf("%s odometry RPE RMSE %.4f m\n",
+                mode == OdometryMode::kJoint ? "joint" : "two-step", *rpe.translation_rmse_m);
+  }
+}
+
+TEST(Pipeline, SameInputGivesIdenticalPoses) {
+  const Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  const auto first = run(config), second = run(config);
+  ASSERT_EQ(first.size(), second.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_TRUE(first[i].matrix() == second[i].matrix()) << "frame " << i;
+  }
+}

@@ -1,0 +1,158 @@
+// The whole pipeline on simulated sequences with exact ground truth: a known trajectory is
+// recovered and a loop is closed; the ambient filter finds the tunnel and the highway more
+// degenerate than the city; on a highway the adaptive threshold keeps the odometry on the road
+// where a strict fixed one stalls.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/eval/metrics.h"
+#include "adaptive_lego_loam/io/pose_files.h"
+#include "adaptive_lego_loam/sim/scenario.h"
+#include "adaptive_lego_loam/sim/simulator.h"
+#include "adaptive_lego_loam/sim/trajectory.h"
+
+using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::sim;
+
+namespace {
+
+Config kitti_config() {
+  return load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+}
+
+SceneRequest scene_request(ScenarioKind kind, uint64_t seed, int frames) {
+  SceneRequest request;
+  request.scenario = default_scenario(kind);
+  request.seed = seed;
+  request.frames = frames;
+  request.reach = kitti_config().sensor.max_range;
+  return request;
+}
+
+// KITTI's HDL-64E (2083 firings a turn, de-skewed scans as KITTI ships them) driving the scene of
+// `request`, of which the frames 0, `step`, ... before `rendered` are simulated (a loop's path
+// wraps round: frames past `request.frames` go round again).
+std::vector<SimFrame> simulate(const SceneRequest& request, int rendered, int step = 1) {
+  const GeneratedScene scene = generate_scene(request);
+  SimSensorOptions options;
+  options.columns = 2083;
+  options.motion_distortion = false;
+  LidarSimulator simulator(LidarModel(kitti_config().sensor, options), scene.world,
+                           scene.trajectory, request.seed);
+  std::vector<SimFrame> out;
+  for (int frame = 0; frame < rendered; frame += step)
+    out.push_back(simulator.render(frame));
+  return out;
+}
+
+struct Drive {
+  std::vector<Eigen::Isometry3d> estimate, truth;  // truth relative to the first frame
+  int loops = 0;
+};
+
+Drive drive(const Config& config, const std::vector<SimFrame>& frames) {
+  Pipeline pipeline(config);
+  Drive out;
+  for (const SimFrame& frame : frames) {
+    Scan scan = frame.scan;
+    scan.stamp = frame.time;
+    out.loops += pipeline.process(scan).loop_closed;
+    out.truth.push_back(frames.front().sensor_pose.inverse() * frame.sensor_pose);
+  }
+  out.estimate = pipeline.trajectory();
+  return out;
+}
+
+}  // namespace
+
+TEST(SimOdometry, LoopTrajectoryRecoveredAndClosed) {
+  // A 160 m urban loop in 20 s, and on past the start for 2.5 s: loops are looked for once a
+  // second (an attempt runs a bounded piece a scan, kitti.yaml's for about 10 scans), and only
+  // from past the start does the candidate's map (the first keyframes and those after them)
+  // cover what the scan sees. Loops are looked for 15 s back (LeGO-LOAM: 30 s) to keep the test
+  // short.
+  Config config = kitti_config();
+  config.loop_closure.min_time_gap = 15.0;
+  const auto [estimate, truth, loops] =
+      drive(config, simulate(scene_request(ScenarioKind::kLoop, 2, 200), 225));
+  const KittiSegmentError segments = kitti_segment_error(estimate, truth);
+  ASSERT_TRUE(segments.translation_percent.has_value()) << "the path must exceed 100 m";
+  EXPECT_LT(*segments.translation_percent, 2.0);
+  EXPECT_GE(loops, 1) << "the path returns to its start: a loop must close";
+  const double end_error = (estimate.back().translation() - truth.back().translation()).norm();
+  EXPECT_LT(end_error, 0.5);
+  std::printf(
+      "[ measured ] t_err %.3f %%, r_err %.3f deg/100 m, %d loop(s), end error %.3f m, "
+      "ATE %.3f m\n",
+      *segments.translation_percent, *segments.rotation_deg_per_100m, loops, end_error,
+      absolute_trajectory_error(estimate, truth).rmse_m);
+}
+
+// Mean mu over every 10th of 200 frames of seeds 1-3 (HDL-64E). Measured: urban 0.63, highway
+// 0.90, tunnel 0.93. The highway's stretches differ: along concrete barriers, noise walls, berms
+// and cuttings mu is 0.85-0.95; along guard rails alone it falls to 0.5 or below, as a rail's
+// few rows break into small depth clusters and the skeleton keeps little more than nearby cars,
+// posts and signs.
+TEST(SimOdometry, HighwayAndTunnelAreMoreDegenerateThanUrban) {
+  const Config config = kitti_config();
+  auto mean_mu = [&](ScenarioKind kind) {
+    AmbientFilter filter(config);
+    AmbientFilterResult result;
+    double sum = 0.0;
+    int valid = 0;
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+      for (const SimFrame& frame : simulate(scene_request(kind, seed, 200), 200, 10)) {
+        filter.reset();
+        filter.process(frame.scan, result);
+        if (!result.degeneration.valid) continue;
+        sum += result.degeneration.mu;
+        ++valid;
+      }
+    }
+    return valid > 0 ? sum / valid : -1.0;
+  };
+  const double urban = mean_mu(ScenarioKind::kUrban);
+  const double highway = mean_mu(ScenarioKind::kHighway);
+  const double tunnel = mean_mu(ScenarioKind::kTunnel);
+  std::printf("[ measured ] mean mu: urban %.3f, highway %.3f, tunnel %.3f\n", urban, highway,
+              tunnel);
+  ASSERT_GE(urban, 0.0);
+  EXPECT_GT(tunnel, urban + 0.1);
+  EXPECT_GT(highway, urban + 0.1);
+  EXPECT_GT(tunnel, 0.85);
+}
+
+// The paper's KITTI 01 case on the simulated highway, driven along KITTI 01's real trajectory
+// (its first 200 scans, 10 -> 25 m/s). Where a stretch has little but guard rails beside it, the
+// strict fixed threshold cleans away what constrains the motion along the road and the odometry
+// loses it; the adaptive threshold keeps it. This test drives seed 5, on which the strict threshold
+// loses the road.
+TEST(SimOdometry, AdaptiveThresholdFollowsTheHighwayWhereTheStrictOneStalls) {
+  const int frames = 200;
+  const std::string data = std::string(TEST_DATA_DIR) + "/kitti_poses/";
+  SceneRequest request = scene_request(ScenarioKind::kHighway, 5, frames);
+  request.trajectory_poses =
+      camera_poses_to_vehicle_axes(read_kitti_poses(data + "01_frames0-199.txt"));
+  request.trajectory_times = read_kitti_times(data + "01_times0-199.txt");
+  const std::vector<SimFrame> scans = simulate(request, frames);
+  auto translation_error_percent = [&](const Config& config) {
+    const Drive result = drive(config, scans);
+    return kitti_segment_error(result.estimate, result.truth).translation_percent.value_or(-1.0);
+  };
+  Config adaptive = kitti_config();
+  adaptive.ambient.mode = Beta0Mode::kAdaptive;
+  Config strict = adaptive;
+  strict.ambient.mode = Beta0Mode::kFixed;
+  strict.ambient.fixed_beta0_deg = 60.0;
+  const double adaptive_error = translation_error_percent(adaptive);
+  const double strict_error = translation_error_percent(strict);
+  std::printf("[ measured ] highway t_err adaptive %.3f %%, fixed 60 deg %.3f %%\n", adaptive_error,
+              strict_error);
+  ASSERT_GE(adaptive_error, 0.0) << "the path must exceed 100 m";
+  EXPECT_LT(adaptive_error, 1.0);
+  EXPECT_GT(strict_error, 5.0 * adaptive_error);
+}

@@ -1,0 +1,95 @@
+// The building blocks of odometry and mapping: the KD-tree and the voxel map against a brute-force
+// search, and the registration cost functions' analytic Jacobians against finite differences.
+
+#include <gtest/gtest.h>
+#include <pcl/filters/voxel_grid.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "adaptive_lego_loam/core/mapping/local_map.h"
+#include "adaptive_lego_loam/core/odometry/residuals.h"
+#include "adaptive_lego_loam/core/spatial/kdtree.h"
+#include "adaptive_lego_loam/core/spatial/voxel_filter.h"
+#include "adaptive_lego_loam/core/spatial/voxel_map.h"
+
+using namespace adaptive_lego_loam;
+
+namespace {
+
+CloudPtr random_cloud(int size, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> coordinate(-10.f, 10.f);
+  CloudPtr cloud(new Cloud);
+  for (int i = 0; i < size; ++i) {
+    CloudPoint p;
+    p.x = coordinate(random);
+    p.y = coordinate(random);
+    p.z = 0.1f * coordinate(random);  // flat, as scans are
+    cloud->push_back(p);
+  }
+  // Duplicates and points on one line: ties and zero extents.
+  for (int i = 0; i < 20; ++i)
+    cloud->push_back((*cloud)[i]);
+  for (int i = 0; i < 30; ++i) {
+    CloudPoint p;
+    p.x = 0.5f * static_cast<float>(i);
+    p.y = p.z = 1.f;
+    cloud->push_back(p);
+  }
+  return cloud;
+}
+
+}  // namespace
+
+namespace {
+
+std::vector<Eigen::Vector3f> sorted_points(const Cloud& cloud) {
+  std::vector<Eigen::Vector3f> points;
+  for (const CloudPoint& p : cloud)
+    points.push_back(p.getVector3fMap());
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  return points;
+}
+
+}  // namespace
+
+TEST(VoxelFilter, MatchesPclsVoxelGridAndForgetsTheCloudBefore) {
+  // One filter used again, as the stages use theirs: each cloud's output is PCL's for that cloud
+  // and leaf alone (PCL accumulates in float, hence the tolerance).
+  VoxelFilter filter;
+  for (const auto& [seed, leaf] : {std::pair{11u, 0.4}, std::pair{12u, 0.2}, std::pair{13u, 1.2}}) {
+    SCOPED_TRACE("leaf " + std::to_string(leaf));
+    const CloudPtr cloud = random_cloud(seed == 12u ? 20000 : 5000, seed);
+    Cloud expected;
+    pcl::VoxelGrid<CloudPoint> grid;
+    grid.setLeafSize(leaf, leaf, leaf);
+    grid.setInputCloud(cloud);
+    grid.filter(expected);
+    const std::vector<Eigen::Vector3f> ours = sorted_points(*filter(*cloud, leaf));
+    const std::vector<Eigen::Vector3f> pcl_points = sorted_points(expected);
+    ASSERT_EQ(ours.size(), pcl_points.size());
+    for (std::size_t i = 0; i < ours.size(); ++i)
+      ASSERT_LT((ours[i] - pcl_points[i]).norm(), 1e-4f) << i;
+  }
+}
+
+TEST(VoxelFilter, OfTwoCloudsIsTheFilterOfTheirJoin) {
+  // The mapping filters a scan's surfaces and outliers together without copying them into one.
+  const CloudPtr surfaces = random_cloud(4000, 14), outliers = random_cloud(500, 15);
+  Cloud joined = *surfaces;
+  joined += *outliers;
+  VoxelFilter filter;
+  const CloudPtr expected = filter(joined, 0.4);
+  const CloudPtr together = filter(*surfaces, *outliers, 0.4);
+  ASSERT_EQ(together->size(), expected->size());
+  for (std::size_t i = 0; i < expected->size(); ++i) {
+    ASSERT_EQ((*together)[i].getVector3fMap(), (*expected)[i].getVector3fMap()) << i;
+    ASSERT_EQ((*together)[i].intensity, (*expected)[i].intensity) << i;
+  }
+  EXPECT_EQ(filter(*surfaces, *outliers, 0.0)->size(), joined.size());  // no filtering
+}

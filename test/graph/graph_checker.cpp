@@ -1,0 +1,386 @@
+// The checker of test/graph.test. Writes KITTI 07's five scans to a bag with kitti_to_bag's
+// writer, then plays them in lock step (each scan once the previous one is mapped) with /clock
+// through the four nodes, a malformed and a NaN-only cloud between two good scans, and compares
+// what comes out with the ground truth and with the offline Pipeline on the same scans.
+
+#include <adaptive_lego_loam/DegenerationState.h>
+#include <gtest/gtest.h>
+
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <rosgraph_msgs/Clock.h>
+#include <rosgraph_msgs/Log.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/point_cloud2_iterator.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+#include "support/run_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+
+#include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/ros/cloud_conversions.h"
+#include "adaptive_lego_loam/ros/kitti_bag.h"
+#include "adaptive_lego_loam/ros/pose_conversions.h"
+
+using namespace adaptive_lego_loam;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kMalformedAfterScan = 2;  // the bad clouds go between scans 2 and 3
+
+// What the checker saw on the graph's outputs.
+struct Recording {
+  std::map<ros::Time, Eigen::Isometry3d> mapped, integrated;
+  std::map<ros::Time, DegenerationState> degeneration;
+  std::vector<std::string> image_projection_warnings;
+  std::optional<Eigen::Isometry3d> tf_map_to_sensor;  // at the last scan's stamp
+  bool every_scan_mapped = true;
+};
+
+struct Bag {
+  std::vector<sensor_msgs::PointCloud2> clouds;
+  std::vector<Eigen::Isometry3d> truth;  // lidar frame
+};
+
+Bag write_and_read_bag(const std::string& dir) {
+  ros_bridge::KittiBagOptions options;
+  options.input = std::string(TEST_DATA_DIR) + "/kitti_seq07";
+  options.output = dir + "/kitti07.bag";
+  options.config_path = std::string(CONFIG_DIR) + "/kitti.yaml";
+  ros_bridge::write_kitti_bag(options);
+  rosbag::Bag bag(options.output, rosbag::bagmode::Read);
+  Bag contents;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+    if (const auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) {
+      contents.clouds.push_back(*cloud);
+    } else if (const auto truth = m.instantiate<nav_msgs::Odometry>()) {
+      contents.truth.push_back(ros_bridge::pose_from_ros(truth->pose.pose, "ground_truth"));
+    }
+  }
+  return contents;
+}
+
+// The config the nodes run with: ~config, else config/kitti.yaml.
+std::string graph_config_path() {
+  std::string path;
+  ros::NodeHandle("~").getParam("config", path);
+  return path.empty() ? std::string(CONFIG_DIR) + "/kitti.yaml" : path;
+}
+
+// Polls callbacks until `done` or `seconds` of wall time pass.
+bool wait_for(const std::function<bool()>& done, double seconds) {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(seconds);
+  while (ros::ok() && ros::WallTime::now() < deadline) {
+    ros::spinOnce();
+    if (done()) return true;
+    ros::WallDuration(0.005).sleep();
+  }
+  return done();
+}
+
+// The nodes the master lists as publishers (kind 0) or subscribers (kind 1) of `topic`.
+std::vector<std::string> registered_nodes(int kind, const std::string& topic) {
+  XmlRpc::XmlRpcValue request, response, payload;
+  request[0] = ros::this_node::getName();
+  std::vector<std::string> nodes;
+  if (!ros::master::execute("getSystemState", request, response, payload, false)) return nodes;
+  for (int i = 0; i < payload[kind].size(); ++i) {
+    if (std::string(payload[kind][i][0]) != topic) continue;
+    for (int j = 0; j < payload[kind][i][1].size(); ++j)
+      nodes.push_back(payload[kind][i][1][j]);
+  }
+  return nodes;
+}
+
+// Whether every topic has a publisher and a subscriber registered with the master.
+bool graph_connected(const std::vector<std::string>& topics) {
+  for (const std::string& topic : topics) {
+    if (registered_nodes(0, topic).empty() || registered_nodes(1, topic).empty()) return false;
+  }
+  return true;
+}
+
+sensor_msgs::PointCloud2 cloud_without_z(const std_msgs::Header& header) {
+  sensor_msgs::PointCloud2 msg;
+  sensor_msgs::PointCloud2Modifier modifier(msg);
+  modifier.setPointCloud2Fields(3, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
+                                sensor_msgs::PointField::FLOAT32, "intensity", 1,
+                                sensor_msgs::PointField::FLOAT32);
+  modifier.resize(100);
+  msg.header = header;
+  return msg;
+}
+
+sensor_msgs::PointCloud2 nan_cloud(const std_msgs::Header& header) {
+  std::vector<ScanPoint> points(100);
+  for (ScanPoint& p : points)
+    p.x = p.y = p.z = std::nanf("");
+  return ros_bridge::to_ros(points, header, true);
+}
+
+Eigen::Isometry3d pose_of(const nav_msgs::Odometry& msg) {
+  return ros_bridge::pose_from_ros(msg.pose.pose, "test");
+}
+
+class Player {
+ public:
+  explicit Player(Recording& recording) : recording_(recording), tf_listener_(tf_buffer_) {
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    cloud_pub_ = nh_.advertise<sensor_msgs::PointCloud2>("/velodyne_points", 10);
+    subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
+        "/aft_mapped_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
+          recording_.mapped[m->header.stamp] = pose_of(*m);
+        }));
+    subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
+        "/integrated_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
+          recording_.integrated[m->header.stamp] = pose_of(*m);
+        }));
+    subs_.push_back(nh_.subscribe<DegenerationState>(
+        "/degeneration", 10, [this](const DegenerationStateConstPtr& m) {
+          recording_.degeneration[m->header.stamp] = *m;
+        }));
+    subs_.push_back(nh_.subscribe<rosgraph_msgs::Log>(
+        "/rosout", 100, [this](const rosgraph_msgs::LogConstPtr& m) {
+          if (m->name == "/image_projection" && m->level == rosgraph_msgs::Log::WARN) {
+            recording_.image_projection_warnings.push_back(m->msg);
+          }
+        }));
+  }
+
+  bool wait_for_graph() {
+    const std::vector<std::string> topics = {"/velodyne_points",
+                                             "/segmented_cloud",
+                                             "/segmented_cloud_info",
+                                             "/outlier_cloud",
+                                             "/laser_cloud_corner_last",
+                                             "/laser_cloud_surf_last",
+                                             "/outlier_cloud_last",
+                                             "/laser_odom_to_init",
+                                             "/aft_mapped_to_init",
+                                             "/integrated_to_init",
+                                             "/degeneration"};
+    if (!wait_for([&] { return graph_connected(topics); }, 60.0)) return false;
+    ros::WallDuration(1.0).sleep();  // registered is not yet connected: as rosbag play -d 1
+    return true;
+  }
+
+  void send(const sensor_msgs::PointCloud2& cloud) {
+    rosgraph_msgs::Clock clock;
+    clock.clock = cloud.header.stamp;
+    clock_pub_.publish(clock);
+    cloud_pub_.publish(cloud);
+  }
+
+  // Sends a scan and waits until it is mapped and fused.
+  bool play(const sensor_msgs::PointCloud2& cloud) {
+    send(cloud);
+    const ros::Time stamp = cloud.header.stamp;
+    return wait_for(
+        [&] { return recording_.mapped.count(stamp) && recording_.integrated.count(stamp); }, 30.0);
+  }
+
+  bool wait_for_warning(const std::string& text) {
+    return wait_for(
+        [&] {
+          for (const std::string& line : recording_.image_projection_warnings) {
+            if (line.find(text) != std::string::npos) return true;
+          }
+          return false;
+        },
+        10.0);
+  }
+
+  std::optional<Eigen::Isometry3d> lookup(const std::string& target, const std::string& source,
+                                          const ros::Time& stamp) {
+    if (!wait_for([&] { return tf_buffer_.canTransform(target, source, stamp); }, 10.0)) {
+      return std::nullopt;
+    }
+    return tf2::transformToEigen(tf_buffer_.lookupTransform(target, source, stamp));
+  }
+
+ private:
+  Recording& recording_;
+  ros::NodeHandle nh_;
+  ros::Publisher clock_pub_, cloud_pub_;
+  std::vector<ros::Subscriber> subs_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+};
+
+double angle_between(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle();
+}
+
+class Graph : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("alego_graph_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    bag_ = write_and_read_bag(dir_.string());
+    config_ = load_config(graph_config_path());
+    offline_ = run_offline(bag_.clouds);
+
+    Player player(recording_);
+    graph_ready_ = player.wait_for_graph();
+    if (!graph_ready_) return;
+    degeneration_subscribers_ = registered_nodes(1, "/degeneration");
+    for (std::size_t i = 0; i < bag_.clouds.size(); ++i) {
+      recording_.every_scan_mapped &= player.play(bag_.clouds[i]);
+      if (static_cast<int>(i) != kMalformedAfterScan) continue;
+      std_msgs::Header header = bag_.clouds[i].header;
+      header.stamp += ros::Duration(0.03);
+      player.send(cloud_without_z(header));
+      saw_missing_field_warning_ = player.wait_for_warning("missing field z");
+      header.stamp += ros::Duration(0.03);
+      player.send(nan_cloud(header));
+      saw_nan_warning_ = player.wait_for_warning("NaN");
+    }
+    const ros::Time last = bag_.clouds.back().header.stamp;
+    recording_.tf_map_to_sensor = player.lookup("map", bag_.clouds.back().header.frame_id, last);
+  }
+
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+  static std::vector<Eigen::Isometry3d> run_offline(
+      const std::vector<sensor_msgs::PointCloud2>& clouds) {
+    Pipeline pipeline(config_);
+    std::vector<Eigen::Isometry3d> poses;
+    for (const auto& cloud : clouds)
+      poses.push_back(pipeline.process(ros_bridge::from_ros(cloud, "bag")).pose);
+    return poses;
+  }
+
+  void SetUp() override { ASSERT_TRUE(graph_ready_) << "the nodes did not come up"; }
+
+  static inline fs::path dir_;
+  static inline Config config_;
+  static inline std::vector<std::string> degeneration_subscribers_;
+  static inline Bag bag_;
+  static inline std::vector<Eigen::Isometry3d> offline_;
+  static inline Recording recording_;
+  static inline bool graph_ready_ = false;
+  static inline bool saw_missing_field_warning_ = false;
+  static inline bool saw_nan_warning_ = false;
+};
+
+TEST_F(Graph, EveryScanIsMappedOnce) {
+  EXPECT_TRUE(recording_.every_scan_mapped);
+  ASSERT_EQ(recording_.mapped.size(), bag_.clouds.size());
+  for (const auto& cloud : bag_.clouds)
+    EXPECT_EQ(recording_.mapped.count(cloud.header.stamp), 1u) << cloud.header.stamp;
+}
+
+TEST_F(Graph, FinalMappedPoseWithin5cmOfGroundTruth) {
+  ASSERT_EQ(bag_.truth.size(), bag_.clouds.size());
+  ASSERT_TRUE(recording_.mapped.count(bag_.clouds.back().header.stamp));
+  const Eigen::Isometry3d& last = recording_.mapped.at(bag_.clouds.back().header.stamp);
+  const double error = (last.translation() - bag_.truth.back().translation()).norm();
+  EXPECT_LT(error, 0.05);
+  EXPECT_GT(bag_.truth.back().translation().norm(), 0.3) << "the sensor should have moved";
+}
+
+TEST_F(Graph, SamePosesAsTheOfflinePipeline) {
+  ASSERT_EQ(offline_.size(), bag_.clouds.size());
+  double largest = 0.0;
+  for (std::size_t i = 0; i < bag_.clouds.size(); ++i) {
+    const auto it = recording_.mapped.find(bag_.clouds[i].header.stamp);
+    ASSERT_NE(it, recording_.mapped.end()) << "scan " << i;
+    largest = std::max(largest, (it->second.translation() - offline_[i].translation()).norm());
+    EXPECT_LT((it->second.translation() - offline_[i].translation()).norm(), 1e-6) << "scan " << i;
+    EXPECT_LT(angle_between(it->second, offline_[i]), 1e-6) << "scan " << i;
+  }
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3g", largest);
+  RecordProperty("largest_translation_difference_m", text);
+}
+
+TEST_F(Graph, MapOptimizationPairsTheDegenerationOnlyWithThePrior) {
+  const bool subscribed = std::count(degeneration_subscribers_.begin(),
+                                     degeneration_subscribers_.end(), "/map_optimization") > 0;
+  EXPECT_EQ(subscribed, config_.mapping.weak_direction_prior > 0.0) << config_.source;
+}
+
+TEST_F(Graph, DegenerationHasValidMuForEveryScan) {
+  ASSERT_EQ(recording_.degeneration.size(), bag_.clouds.size());
+  for (const auto& [stamp, msg] : recording_.degeneration) {
+    EXPECT_TRUE(msg.valid) << stamp;
+    EXPECT_GE(msg.mu, 0.0) << stamp;
+    EXPECT_LE(msg.mu, 1.0) << stamp;
+    EXPECT_GE(msg.beta0_deg, 10.0f - 1e-4f) << stamp;
+    EXPECT_LE(msg.beta0_deg, 60.0f + 1e-4f) << stamp;
+    EXPECT_GT(msg.skeleton_points, 0u) << stamp;
+  }
+}
+
+TEST_F(Graph, MalformedCloudsAreLoggedDroppedAndTheNextScanMapped) {
+  EXPECT_TRUE(saw_missing_field_warning_);
+  EXPECT_TRUE(saw_nan_warning_);
+  bool names_topic = false;
+  for (const std::string& line : recording_.image_projection_warnings)
+    names_topic |= line.find("/velodyne_points") != std::string::npos;
+  EXPECT_TRUE(names_topic);
+  // No output for the bad clouds; both scans after them mapped.
+  EXPECT_EQ(recording_.degeneration.size(), bag_.clouds.size());
+  for (std::size_t i = kMalformedAfterScan + 1; i < bag_.clouds.size(); ++i)
+    EXPECT_EQ(recording_.mapped.count(bag_.clouds[i].header.stamp), 1u) << "scan " << i;
+}
+
+TEST_F(Graph, TfChainMapOdomSensorGivesTheMappedPose) {
+  ASSERT_TRUE(recording_.tf_map_to_sensor) << "no map -> velodyne transform";
+  const Eigen::Isometry3d& mapped = recording_.mapped.at(bag_.clouds.back().header.stamp);
+  EXPECT_LT((recording_.tf_map_to_sensor->translation() - mapped.translation()).norm(), 1e-6);
+  EXPECT_LT(angle_between(*recording_.tf_map_to_sensor, mapped), 1e-6);
+  // transform_fusion's output for every scan, close to the mapped pose.
+  ASSERT_EQ(recording_.integrated.size(), bag_.clouds.size());
+  for (const auto& [stamp, pose] : recording_.integrated)
+    EXPECT_LT((pose.translation() - recording_.mapped.at(stamp).translation()).norm(), 0.05);
+}
+
+// Runs a node with extra arguments (at most 20 s) and returns its exit status and output.
+std::pair<int, std::string> run_node_binary(const std::string& node, const std::string& arguments) {
+  return adaptive_lego_loam::test::run_command("timeout 20 " + std::string(BIN_DIR) + "/" + node +
+                                               " " + arguments);
+}
+
+TEST(NodeStartUp, BadConfigStopsTheNodeWithTheLoadersMessage) {
+  const fs::path bad =
+      fs::temp_directory_path() / ("alego_bad_" + std::to_string(::getpid()) + ".yaml");
+  std::ofstream(bad) << "sensor:\n  rows: -3\n";
+  const auto [status, output] =
+      run_node_binary("image_projection", "__name:=bad_config_node _config:=" + bad.string());
+  fs::remove(bad);
+  EXPECT_EQ(status, 1) << output;
+  // The loader's own words: the file, the key, the value and the allowed range.
+  EXPECT_NE(output.find("sensor.rows"), std::string::npos) << output;
+  EXPECT_NE(output.find("-3 is out of range: expected an integer in [1, 512]"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find(bad.string()), std::string::npos) << output;
+}
+
+TEST(NodeStartUp, UnknownSensorNameListsTheKnownOnes) {
+  const auto [status, output] =
+      run_node_binary("map_optimization", "__name:=bad_sensor_node _sensor:=velodyne128");
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find("velodyne128"), std::string::npos) << output;
+  EXPECT_NE(output.find("hdl32, hdl64e, kitti, kitti_16rings, vlp16"), std::string::npos) << output;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "graph_checker");
+  ros::NodeHandle nh;  // keeps the node up for the whole run
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,88 @@
+// Conversions of the nodes' messages: what image_projection sends feature_association, the
+// feature clouds, poses, odometry and TF, and the degeneration state.
+
+#include <gtest/gtest.h>
+
+#include <sensor_msgs/point_cloud2_iterator.h>
+
+#include <cmath>
+
+#include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/odometry/lidar_odometry.h"
+#include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/scan_files.h"
+#include "adaptive_lego_loam/ros/cloud_conversions.h"
+#include "adaptive_lego_loam/ros/degeneration_conversions.h"
+#include "adaptive_lego_loam/ros/feature_conversions.h"
+#include "adaptive_lego_loam/ros/pose_conversions.h"
+#include "adaptive_lego_loam/ros/segmented_cloud_conversions.h"
+
+using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::ros_bridge;
+
+namespace {
+
+std_msgs::Header header_at(double seconds, const std::string& frame = "velodyne") {
+  std_msgs::Header header;
+  header.stamp.fromSec(seconds);
+  header.frame_id = frame;
+  return header;
+}
+
+}  // namespace
+
+namespace {
+
+Eigen::Isometry3d sample_pose() {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.2, -0.3, 1).normalized()).matrix();
+  pose.translation() = Eigen::Vector3d(12.5, -3.25, 0.4);
+  return pose;
+}
+
+}  // namespace
+
+TEST(PoseConversions, OdometryRoundTripAndFrames) {
+  const nav_msgs::Odometry msg = odometry_to_ros(sample_pose(), header_at(5.0, "odom"), "velodyne");
+  EXPECT_EQ(msg.header.frame_id, "odom");
+  EXPECT_EQ(msg.child_frame_id, "velodyne");
+  EXPECT_DOUBLE_EQ(msg.pose.pose.position.x, 12.5);
+  const Eigen::Isometry3d back = pose_from_ros(msg.pose.pose, "laser_odom_to_init");
+  EXPECT_TRUE(back.isApprox(sample_pose(), 1e-14));
+}
+
+TEST(PoseConversions, BadPosesAreRejectedNamingTheTopic) {
+  geometry_msgs::Pose pose;  // zero quaternion
+  EXPECT_THROW(pose_from_ros(pose, "/laser_odom_to_init"), IoError);
+  pose.orientation.w = std::nan("");
+  try {
+    pose_from_ros(pose, "/laser_odom_to_init");
+    FAIL() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()), "/laser_odom_to_init: pose holds a non-finite number");
+  }
+  pose.orientation.w = 2.0;  // not normalised: accepted, normalised
+  EXPECT_TRUE(pose_from_ros(pose, "t").linear().isApprox(Eigen::Matrix3d::Identity(), 1e-15));
+}
+
+TEST(PoseConversions, TransformMovesChildPointsIntoTheParent) {
+  const auto msg = transform_to_ros(sample_pose(), header_at(1.0, "map"), "odom");
+  EXPECT_EQ(msg.header.frame_id, "map");
+  EXPECT_EQ(msg.child_frame_id, "odom");
+  EXPECT_DOUBLE_EQ(msg.transform.translation.y, -3.25);
+  const Eigen::Quaterniond q(msg.transform.rotation.w, msg.transform.rotation.x,
+                             msg.transform.rotation.y, msg.transform.rotation.z);
+  EXPECT_TRUE(q.toRotationMatrix().isApprox(sample_pose().linear(), 1e-14));
+}
+
+TEST(PoseConversions, PathHoldsEveryPoseWithItsStamp) {
+  const std::vector<Eigen::Isometry3d> poses = {Eigen::Isometry3d::Identity(), sample_pose()};
+  const nav_msgs::Path path = path_to_ros(poses, {ros::Time(1.0), ros::Time(1.1)}, "map");
+  ASSERT_EQ(path.poses.size(), 2u);
+  EXPECT_EQ(path.header.frame_id, "map");
+  EXPECT_EQ(path.header.stamp, ros::Time(1.1));
+  EXPECT_EQ(path.poses[1].header.stamp, ros::Time(1.1));
+  EXPECT_DOUBLE_EQ(path.poses[1].pose.position.z, 0.4);
+  EXPECT_THROW(path_to_ros(poses, {ros::Time(1.0)}, "map"), std::invalid_argument);
+}

@@ -1,0 +1,249 @@
+// Each scenario generates, is deterministic, and has the character it claims; the sequence
+// writer's output is what KITTI and SemanticKITTI readers expect.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/pose_files.h"
+#include "adaptive_lego_loam/io/scan_files.h"
+#include "adaptive_lego_loam/sim/scenario.h"
+#include "adaptive_lego_loam/sim/sequence_writer.h"
+#include "adaptive_lego_loam/sim/simulator.h"
+
+using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::sim;
+
+namespace {
+
+constexpr int kFrames = 3;
+
+SensorParams vlp16() {
+  return load_config(std::string(CONFIG_DIR) + "/vlp16.yaml").sensor;
+}
+
+SceneRequest request_for(ScenarioKind kind, uint64_t seed, int frames = kFrames) {
+  SceneRequest request;
+  request.scenario = default_scenario(kind);
+  request.seed = seed;
+  request.frames = frames;
+  request.reach = vlp16().max_range;
+  return request;
+}
+
+std::vector<SimFrame> simulate(ScenarioKind kind, uint64_t seed, int frames = kFrames) {
+  const GeneratedScene scene = generate_scene(request_for(kind, seed, frames));
+  SimSensorOptions options;
+  options.columns = 1800;
+  LidarSimulator simulator(LidarModel(vlp16(), options), scene.world, scene.trajectory, seed);
+  std::vector<SimFrame> out;
+  for (int frame = 0; frame < frames; ++frame)
+    out.push_back(simulator.render(frame));
+  return out;
+}
+
+// The frames of each scenario with seed 3, simulated once for all tests.
+const std::vector<SimFrame>& frames_of(ScenarioKind kind) {
+  static std::map<ScenarioKind, std::vector<SimFrame>> cache;
+  auto found = cache.find(kind);
+  if (found == cache.end()) found = cache.emplace(kind, simulate(kind, 3)).first;
+  return found->second;
+}
+
+struct Character {
+  long points = 0, non_ground = 0;
+  std::map<SemanticClass, long> per_class;
+  long facing_along_road = 0;  // non-ground points whose surface faces along x (the road)
+  long structure_left = 0, structure_right = 0;
+
+  double share(SemanticClass semantic) const {
+    const auto found = per_class.find(semantic);
+    return found == per_class.end() ? 0.0 : double(found->second) / points;
+  }
+  double vegetation_share() const {
+    return share(SemanticClass::kVegetation) + share(SemanticClass::kTrunk);
+  }
+  double non_ground_share(std::initializer_list<SemanticClass> classes) const {
+    long count = 0;
+    for (SemanticClass semantic : classes) {
+      const auto found = per_class.find(semantic);
+      if (found != per_class.end()) count += found->second;
+    }
+    return double(count) / non_ground;
+  }
+};
+
+Character character_of(ScenarioKind kind) {
+  Character c;
+  for (const SimFrame& frame : frames_of(kind)) {
+    for (std::size_t i = 0; i < frame.labels.size(); ++i) {
+      const SemanticClass semantic = label_class(frame.labels[i]);
+      ++c.points;
+      ++c.per_class[semantic];
+      if (is_ground_class(semantic)) continue;
+      ++c.non_ground;
+      if (std::abs(frame.normals[i].x()) > 0.7f) ++c.facing_along_road;
+      if (semantic == SemanticClass::kOtherStructure) {
+        (frame.scan.points[i].y > 0 ? c.structure_left : c.structure_right)++;
+      }
+    }
+  }
+  return c;
+}
+
+bool same_bytes(const std::vector<SimFrame>& a, const std::vector<SimFrame>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t f = 0; f < a.size(); ++f) {
+    const auto& pa = a[f].scan.points;
+    const auto& pb = b[f].scan.points;
+    if (pa.size() != pb.size() || a[f].labels != b[f].labels) return false;
+    if (std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(ScanPoint)) != 0) return false;
+  }
+  return true;
+}
+
+bool same_scene(const World& a, const World& b) {
+  if (a.tiles.size() != b.tiles.size() || a.plants.size() != b.plants.size() ||
+      a.moving_cars.size() != b.moving_cars.size())
+    return false;
+  for (auto ia = a.tiles.begin(), ib = b.tiles.begin(); ia != a.tiles.end(); ++ia, ++ib) {
+    if (ia->first != ib->first || ia->second.vertices != ib->second.vertices ||
+        ia->second.triangle_surfaces != ib->second.triangle_surfaces)
+      return false;
+  }
+  for (std::size_t i = 0; i < a.plants.size(); ++i) {
+    if (a.plants[i].base != b.plants[i].base || a.plants[i].prototype != b.plants[i].prototype)
+      return false;
+  }
+  for (std::size_t i = 0; i < a.moving_cars.size(); ++i) {
+    if (a.moving_cars[i].motion.start_s != b.moving_cars[i].motion.start_s) return false;
+  }
+  return true;
+}
+
+class EveryScenario : public ::testing::TestWithParam<ScenarioKind> {};
+
+}  // namespace
+
+TEST_P(EveryScenario, GeneratesLabelledScans) {
+  const std::vector<SimFrame>& frames = frames_of(GetParam());
+  ASSERT_EQ(frames.size(), static_cast<std::size_t>(kFrames));
+  for (const SimFrame& frame : frames) {
+    EXPECT_GT(frame.scan.points.size(), 5000u);
+    ASSERT_EQ(frame.labels.size(), frame.scan.points.size());
+    for (uint32_t label : frame.labels)
+      ASSERT_NE(label_class(label), SemanticClass::kUnlabeled);
+  }
+  // The sensor moves forward along x from frame to frame.
+  const Eigen::Vector3d step =
+      (frames[0].sensor_pose.inverse() * frames[1].sensor_pose).translation();
+  EXPECT_GT(step.x(), 0.3);
+  EXPECT_LT(std::abs(step.y()), 0.2 * step.x());
+}
+
+INSTANTIATE_TEST_SUITE_P(Sim, EveryScenario,
+                         ::testing::Values(ScenarioKind::kUrban, ScenarioKind::kHighway,
+                                           ScenarioKind::kTunnel, ScenarioKind::kVegetation,
+                                           ScenarioKind::kLoop),
+                         [](const auto& info) { return scenario_name(info.param); });
+
+TEST(SimScenarios, SameSeedSameBytesOtherSeedOtherScene) {
+  // Scans (wind, shaking and noise included) of the scenario with the most randomness...
+  EXPECT_TRUE(
+      same_bytes(simulate(ScenarioKind::kVegetation, 3), frames_of(ScenarioKind::kVegetation)));
+  // ...and the scene of the one with the most kinds of objects.
+  const GeneratedScene first = generate_scene(request_for(ScenarioKind::kUrban, 3));
+  const GeneratedScene again = generate_scene(request_for(ScenarioKind::kUrban, 3));
+  const GeneratedScene other = generate_scene(request_for(ScenarioKind::kUrban, 4));
+  EXPECT_TRUE(same_scene(*first.world, *again.world));
+  EXPECT_FALSE(same_scene(*first.world, *other.world));
+}
+
+TEST(SimScenarios, VegetationShareSetsTheScenariosApart) {
+  const double vegetation = character_of(ScenarioKind::kVegetation).vegetation_share();
+  const double urban = character_of(ScenarioKind::kUrban).vegetation_share();
+  const double highway = character_of(ScenarioKind::kHighway).vegetation_share();
+  const double tunnel = character_of(ScenarioKind::kTunnel).vegetation_share();
+  EXPECT_GT(vegetation, 0.35);
+  EXPECT_GT(vegetation, 2.5 * urban);
+  EXPECT_GT(urban, 0.01);
+  EXPECT_LT(highway, 0.15);
+  EXPECT_EQ(tunnel, 0.0);
+}
+
+TEST(SimScenarios, TunnelHasWallsOnBothSidesAndNothingAcrossTheRoad) {
+  const Character tunnel = character_of(ScenarioKind::kTunnel);
+  const long walls = tunnel.structure_left + tunnel.structure_right;
+  EXPECT_GT(tunnel.share(SemanticClass::kOtherStructure), 0.3);
+  EXPECT_GT(tunnel.structure_left, 0.3 * walls);
+  EXPECT_GT(tunnel.structure_right, 0.3 * walls);
+  // Smooth walls give no constraint along the road: almost no surface faces along it.
+  EXPECT_LT(double(tunnel.facing_along_road) / tunnel.non_ground, 0.03);
+}
+
+TEST(SimScenarios, HighwayIsBarriersWallsAndShrubsAlongTheRoad) {
+  const Character highway = character_of(ScenarioKind::kHighway);
+  const Character urban = character_of(ScenarioKind::kUrban);
+  EXPECT_EQ(highway.share(SemanticClass::kBuilding), 0.0);
+  EXPECT_EQ(highway.share(SemanticClass::kCar), 0.0);  // nobody parks on a highway
+  // Guard rails and concrete barriers (fence), noise walls (other-structure), berms and cuttings
+  // (terrain), shrubs and trees, traffic, the odd sign.
+  EXPECT_GT(highway.non_ground_share({SemanticClass::kFence, SemanticClass::kOtherStructure,
+                                      SemanticClass::kTerrain, SemanticClass::kVegetation,
+                                      SemanticClass::kTrunk, SemanticClass::kMovingCar,
+                                      SemanticClass::kPole, SemanticClass::kTrafficSign}),
+            0.99);
+  EXPECT_GT(highway.non_ground_share({SemanticClass::kFence, SemanticClass::kOtherStructure}), 0.4);
+  // Surfaces facing along the road are what pins the motion along it: the city has many more.
+  const double highway_facing = double(highway.facing_along_road) / highway.non_ground;
+  const double urban_facing = double(urban.facing_along_road) / urban.non_ground;
+  EXPECT_GT(urban_facing, 2.0 * highway_facing);
+}
+
+TEST(SimScenarios, UrbanHasTheThingsOfAStreet) {
+  const Character urban = character_of(ScenarioKind::kUrban);
+  EXPECT_GT(urban.share(SemanticClass::kBuilding), 0.05);
+  EXPECT_GT(urban.share(SemanticClass::kSidewalk), 0.01);
+  EXPECT_GT(urban.share(SemanticClass::kCar) + urban.share(SemanticClass::kMovingCar), 0.01);
+  EXPECT_GT(urban.share(SemanticClass::kPole), 0.0);
+}
+
+TEST(SimScenarios, LoopComesBackToItsStart) {
+  const int frames = 250;
+  const GeneratedScene scene = generate_scene(request_for(ScenarioKind::kLoop, 3, frames));
+  const Trajectory& trajectory = *scene.trajectory;
+  const Eigen::Isometry3d start = trajectory.sensor_pose(0.0);
+  const Eigen::Isometry3d back = trajectory.sensor_pose(trajectory.frame_time(frames));
+  EXPECT_LT((back.translation() - start.translation()).norm(), 1e-6);
+  double farthest = 0.0;
+  for (int frame = 0; frame < frames; frame += 10)
+    farthest = std::max(
+        farthest,
+        (trajectory.sensor_pose(trajectory.frame_time(frame)).translation() - start.translation())
+            .norm());
+  EXPECT_GT(farthest, 40.0);
+}
+
+TEST(SimScenarios, RoughRoadShakesTheSensor) {
+  // Roll over one second, in steps shorter than a sweep.
+  auto roll_spread = [](ScenarioKind kind) {
+    const GeneratedScene scene = generate_scene(request_for(kind, 3, 10));
+    double low = 1e9, high = -1e9;
+    for (int k = 0; k <= 100; ++k) {
+      const Eigen::Matrix3d r = scene.trajectory->sensor_pose(0.01 * k).linear();
+      const double roll = std::atan2(r(2, 1), r(2, 2)) * 180.0 / M_PI;
+      low = std::min(low, roll);
+      high = std::max(high, roll);
+    }
+    return high - low;
+  };
+  EXPECT_GT(roll_spread(ScenarioKind::kVegetation), 0.5);
+  EXPECT_LT(roll_spread(ScenarioKind::kUrban), 0.05);
+}

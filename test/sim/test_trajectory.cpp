@@ -1,0 +1,65 @@
+// Each scenario generates, is deterministic, and has the character it claims; the sequence
+// writer's output is what KITTI and SemanticKITTI readers expect.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/pose_files.h"
+#include "adaptive_lego_loam/io/scan_files.h"
+#include "adaptive_lego_loam/sim/scenario.h"
+#include "adaptive_lego_loam/sim/sequence_writer.h"
+#include "adaptive_lego_loam/sim/simulator.h"
+
+using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::sim;
+
+namespace {
+
+constexpr int kFrames = 3;
+
+SensorParams vlp16() {
+  return load_config(std::string(CONFIG_DIR) + "/vlp16.yaml").sensor;
+}
+
+SceneRequest request_for(ScenarioKind kind, uint64_t seed, int frames = kFrames) {
+  SceneRequest request;
+  request.scenario = default_scenario(kind);
+  request.seed = seed;
+  request.frames = frames;
+  request.reach = vlp16().max_range;
+  return request;
+}
+
+}  // namespace
+
+TEST(SimTrajectory, KittiGroundTruthDrivesTheSensor) {
+  const std::vector<Eigen::Isometry3d> camera =
+      adaptive_lego_loam::read_kitti_poses(std::string(TEST_DATA_DIR) + "/kitti_seq07/poses.txt");
+  const std::vector<Eigen::Isometry3d> vehicle = camera_poses_to_vehicle_axes(camera);
+  SceneRequest request = request_for(ScenarioKind::kUrban, 3, 4);
+  request.trajectory_poses = vehicle;
+  for (std::size_t i = 0; i < vehicle.size(); ++i)
+    request.trajectory_times.push_back(0.1 * i);
+  const GeneratedScene scene = generate_scene(request);
+  const Eigen::Isometry3d first = scene.trajectory->sensor_pose(0.0);
+  for (int frame = 1; frame < 4; ++frame) {
+    const Eigen::Isometry3d relative =
+        first.inverse() * scene.trajectory->sensor_pose(scene.trajectory->frame_time(frame));
+    // Camera z (forward) became x, camera x (right) became -y, camera y (down) became -z.
+    const Eigen::Vector3d in_camera = (camera[0].inverse() * camera[frame]).translation();
+    EXPECT_NEAR(relative.translation().x(), in_camera.z(), 1e-9);
+    EXPECT_NEAR(relative.translation().y(), -in_camera.x(), 1e-9);
+    EXPECT_NEAR(relative.translation().z(), -in_camera.y(), 1e-9);
+    EXPECT_GT(relative.translation().x(), 0.05 * frame);  // KITTI 07 starts slowly forward
+  }
+  request.frames = 6;
+  EXPECT_THROW(generate_scene(request), std::invalid_argument);
+}
