@@ -140,7 +140,7 @@ void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<Sc
   const int rows = static_cast<int>(cloud.info.start_ring_index.size());
   for (int row = 0; row < rows; ++row)
     pick_row(cloud, points, row, out);
-  for (const ScanPoint& p : cloud.outliers)
+  for (const ScanPoint& p : outliers)
     out.outliers->push_back(to_cloud_point(p, -1));
 }
 

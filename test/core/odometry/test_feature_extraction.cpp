@@ -168,3 +168,18 @@ TEST(FeatureExtraction, EveryPickedEdgeBlocksItsNeighbours) {
   for (std::size_t i = 1; i < azimuths.size(); ++i)
     EXPECT_GT(azimuths[i] - azimuths[i - 1], 5 * kStepDeg + 1e-6);
 }
+
+TEST(FeatureExtraction, OutliersAreTheOnesGivenAsTheSweepWasStraightened) {
+  SegmentedCloud cloud = row_of({{{8.0, -30.0}, {8.0, 30.0}}}, -60.0, 60.0);
+  ScanPoint raw;
+  raw.x = 3.f;
+  cloud.outliers = {raw};
+  ScanPoint deskewed = raw;
+  deskewed.x = 2.5f;  // where de-skewing moved it
+  FeatureExtractor extractor{FeatureParams()};
+  FeatureSet features;
+  extractor.extract(cloud, cloud.points, {deskewed}, features);
+  ASSERT_EQ(features.outliers->size(), 1u);
+  EXPECT_FLOAT_EQ((*features.outliers)[0].x, 2.5f);
+  EXPECT_FLOAT_EQ((*features.outliers)[0].intensity, -1.f) << "outliers have no row";
+}
