@@ -56,16 +56,7 @@ Scan read_pcd(const std::string& path) {
   pcl::PCLPointCloud2 cloud;
   pcl::PCDReader reader;
   if (reader.read(path, cloud) < 0) throw IoError(path + ": not a readable PCD file");
-  PackedPoints packed;
-  for (const auto& field : cloud.fields) {
-    packed.fields.push_back({field.name, field.offset, field.datatype, field.count});
-  }
-  packed.data = cloud.data.data();
-  packed.data_size = cloud.data.size();
-  packed.points = static_cast<std::size_t>(cloud.width) * cloud.height;
-  packed.point_step = cloud.point_step;
-  packed.big_endian = cloud.is_bigendian;
-  return decode_points(packed, path);
+  return decode_points(packed_points(cloud), path);
 }
 
 Scan read_scan_file(const std::string& path) {

@@ -7,16 +7,7 @@
 namespace adaptive_lego_loam::ros_bridge {
 
 Scan from_ros(const sensor_msgs::PointCloud2& msg, const std::string& source) {
-  PackedPoints packed;
-  for (const auto& field : msg.fields) {
-    packed.fields.push_back({field.name, field.offset, field.datatype, field.count});
-  }
-  packed.data = msg.data.data();
-  packed.data_size = msg.data.size();
-  packed.points = static_cast<std::size_t>(msg.width) * msg.height;
-  packed.point_step = msg.point_step;
-  packed.big_endian = msg.is_bigendian;
-  Scan scan = decode_points(packed, source);
+  Scan scan = decode_points(packed_points(msg), source);
   scan.stamp = msg.header.stamp.toSec();
   return scan;
 }

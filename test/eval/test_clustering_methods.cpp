@@ -10,22 +10,16 @@
 #include "adaptive_lego_loam/eval/clustering_methods.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "eval/benchmark_boxes.h"
 #include "support/synthetic.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 
 namespace {
 
 const std::string kBench = std::string(TEST_DATA_DIR) + "/clustering_bench";
 const std::string kFrame = "1641652621096865";
-
-AxisAlignedBox box(double x0, double y0, double z0, double x1, double y1, double z1) {
-  return {{x0, y0, z0}, {x1, y1, z1}};
-}
-
-LabelledObject object(const AxisAlignedBox& b) {
-  return {"car", b};
-}
 
 }  // namespace
 

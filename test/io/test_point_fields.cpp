@@ -7,22 +7,11 @@
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/point_fields.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "support/temp_files.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string error_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const IoError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
 
 TEST(PointFields, DecodesIntegerRingAndNanosecondTime) {
   struct Record {

@@ -7,19 +7,15 @@
 
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
+#include "support/temp_files.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 namespace fs = std::filesystem;
 
 namespace {
 
 const std::string kSeq07 = std::string(TEST_DATA_DIR) + "/kitti_seq07";
-
-std::string temp_path(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "alego_test_pose_files";
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
 
 std::string write_text(const std::string& name, const std::string& text) {
   const std::string path = temp_path(name);
@@ -32,15 +28,6 @@ std::string read_text(const std::string& path) {
   std::stringstream text;
   text << file.rdbuf();
   return text.str();
-}
-
-std::string error_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const IoError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // Poses with irrational-looking numbers, so that a lossy format would show.

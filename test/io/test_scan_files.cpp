@@ -7,28 +7,15 @@
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/point_fields.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "support/temp_files.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 namespace fs = std::filesystem;
 
 namespace {
 
 const std::string kData = TEST_DATA_DIR;
-
-std::string temp_path(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "alego_test_scan_files";
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
-
-std::string error_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const IoError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 

@@ -17,35 +17,11 @@
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
 #include "adaptive_lego_loam/ros/segmented_cloud_conversions.h"
+#include "ros/filtered_scans.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 using namespace adaptive_lego_loam::ros_bridge;
-
-namespace {
-
-const std::string kScans = std::string(TEST_DATA_DIR) + "/kitti_seq07/velodyne/";
-
-Config kitti_config() {
-  return load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
-}
-
-// The ambient filter's result on KITTI 07 frame `index`.
-AmbientFilterResult filter_frame(AmbientFilter& filter, int index) {
-  char name[32];
-  std::snprintf(name, sizeof(name), "%010d.bin", index);
-  AmbientFilterResult result;
-  filter.process(read_kitti_bin(kScans + name), result);
-  return result;
-}
-
-std_msgs::Header header_at(double seconds, const std::string& frame = "velodyne") {
-  std_msgs::Header header;
-  header.stamp.fromSec(seconds);
-  header.frame_id = frame;
-  return header;
-}
-
-}  // namespace
 
 TEST(DegenerationConversions, MessageCarriesTheFilterResult) {
   AmbientFilter filter(kitti_config());

@@ -17,30 +17,11 @@
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
 #include "adaptive_lego_loam/ros/segmented_cloud_conversions.h"
+#include "ros/filtered_scans.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 using namespace adaptive_lego_loam::ros_bridge;
-
-namespace {
-
-std_msgs::Header header_at(double seconds, const std::string& frame = "velodyne") {
-  std_msgs::Header header;
-  header.stamp.fromSec(seconds);
-  header.frame_id = frame;
-  return header;
-}
-
-void expect_same_cloud(const Cloud& a, const Cloud& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    ASSERT_EQ(a[i].x, b[i].x) << i;
-    ASSERT_EQ(a[i].y, b[i].y) << i;
-    ASSERT_EQ(a[i].z, b[i].z) << i;
-    ASSERT_EQ(a[i].intensity, b[i].intensity) << i;
-  }
-}
-
-}  // namespace
 
 TEST(FeatureConversions, FeatureCloudRoundTripIsExact) {
   Cloud cloud;

@@ -17,20 +17,11 @@
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
 #include "adaptive_lego_loam/ros/segmented_cloud_conversions.h"
+#include "ros/filtered_scans.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 using namespace adaptive_lego_loam::ros_bridge;
-
-namespace {
-
-std_msgs::Header header_at(double seconds, const std::string& frame = "velodyne") {
-  std_msgs::Header header;
-  header.stamp.fromSec(seconds);
-  header.frame_id = frame;
-  return header;
-}
-
-}  // namespace
 
 namespace {
 

@@ -10,48 +10,11 @@
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/sim/plants.h"
 #include "adaptive_lego_loam/sim/simulator.h"
+#include "sim/sim_sensors.h"
 
 using namespace adaptive_lego_loam;
 using namespace adaptive_lego_loam::sim;
-
-namespace {
-
-SensorParams vlp16() {
-  return load_config(std::string(CONFIG_DIR) + "/vlp16.yaml").sensor;
-}
-
-SimSensorOptions exact_options(int columns) {
-  SimSensorOptions options;
-  options.columns = columns;
-  options.range_noise_m = 0.0;
-  options.motion_distortion = false;
-  options.full_return_incidence_deg = 89.9;  // keep every return but the most grazing
-  options.no_return_incidence_deg = 90.0;
-  return options;
-}
-
-// A sensor standing still at `pose`.
-std::shared_ptr<Trajectory> standing_at(
-    const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity()) {
-  return std::make_shared<SampledTrajectory>(std::vector<double>{0.0, 0.1, 0.2},
-                                             std::vector<Eigen::Isometry3d>(3, pose), Shake());
-}
-
-// In-plane axes of a square facing `normal`.
-std::pair<Eigen::Vector3f, Eigen::Vector3f> square_axes(const Eigen::Vector3f& normal) {
-  const Eigen::Vector3f u = normal.unitOrthogonal();
-  return {u, normal.cross(u).normalized()};
-}
-
-// A square of half size `half` centred on `centre`, facing `normal`.
-void add_square(GeometrySet& set, const Eigen::Vector3f& centre, const Eigen::Vector3f& normal,
-                float half, uint32_t surface) {
-  const auto [axis_u, axis_v] = square_axes(normal);
-  const Eigen::Vector3f u = half * axis_u, v = half * axis_v;
-  set.add_quad(centre - u - v, centre + u - v, centre + u + v, centre - u + v, surface);
-}
-
-}  // namespace
+using namespace adaptive_lego_loam::sim::test;
 
 TEST(SimLabels, FoliageMovesBetweenScansAndCarriesItsInstance) {
   auto world = std::make_shared<World>();

@@ -17,47 +17,11 @@
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/sequence_writer.h"
 #include "adaptive_lego_loam/sim/simulator.h"
+#include "sim/sim_requests.h"
 
 using namespace adaptive_lego_loam;
 using namespace adaptive_lego_loam::sim;
-
-namespace {
-
-constexpr int kFrames = 3;
-
-SensorParams vlp16() {
-  return load_config(std::string(CONFIG_DIR) + "/vlp16.yaml").sensor;
-}
-
-SceneRequest request_for(ScenarioKind kind, uint64_t seed, int frames = kFrames) {
-  SceneRequest request;
-  request.scenario = default_scenario(kind);
-  request.seed = seed;
-  request.frames = frames;
-  request.reach = vlp16().max_range;
-  return request;
-}
-
-std::vector<SimFrame> simulate(ScenarioKind kind, uint64_t seed, int frames = kFrames) {
-  const GeneratedScene scene = generate_scene(request_for(kind, seed, frames));
-  SimSensorOptions options;
-  options.columns = 1800;
-  LidarSimulator simulator(LidarModel(vlp16(), options), scene.world, scene.trajectory, seed);
-  std::vector<SimFrame> out;
-  for (int frame = 0; frame < frames; ++frame)
-    out.push_back(simulator.render(frame));
-  return out;
-}
-
-// The frames of each scenario with seed 3, simulated once for all tests.
-const std::vector<SimFrame>& frames_of(ScenarioKind kind) {
-  static std::map<ScenarioKind, std::vector<SimFrame>> cache;
-  auto found = cache.find(kind);
-  if (found == cache.end()) found = cache.emplace(kind, simulate(kind, 3)).first;
-  return found->second;
-}
-
-}  // namespace
+using namespace adaptive_lego_loam::sim::test;
 
 TEST(SimSequenceWriter, WritesAKittiFolder) {
   const std::filesystem::path dir =

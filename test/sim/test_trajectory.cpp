@@ -17,28 +17,11 @@
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/sequence_writer.h"
 #include "adaptive_lego_loam/sim/simulator.h"
+#include "sim/sim_requests.h"
 
 using namespace adaptive_lego_loam;
 using namespace adaptive_lego_loam::sim;
-
-namespace {
-
-constexpr int kFrames = 3;
-
-SensorParams vlp16() {
-  return load_config(std::string(CONFIG_DIR) + "/vlp16.yaml").sensor;
-}
-
-SceneRequest request_for(ScenarioKind kind, uint64_t seed, int frames = kFrames) {
-  SceneRequest request;
-  request.scenario = default_scenario(kind);
-  request.seed = seed;
-  request.frames = frames;
-  request.reach = vlp16().max_range;
-  return request;
-}
-
-}  // namespace
+using namespace adaptive_lego_loam::sim::test;
 
 TEST(SimTrajectory, KittiGroundTruthDrivesTheSensor) {
   const std::vector<Eigen::Isometry3d> camera =

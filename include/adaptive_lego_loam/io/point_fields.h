@@ -39,6 +39,22 @@ struct PackedPoints {
   bool big_endian = false;
 };
 
+// The packed records of a pcl::PCLPointCloud2 or a sensor_msgs::PointCloud2 (the same fields
+// under the same names), viewed without a copy: `cloud` must outlive the result.
+template <class PointCloud2>
+PackedPoints packed_points(const PointCloud2& cloud) {
+  PackedPoints packed;
+  for (const auto& field : cloud.fields) {
+    packed.fields.push_back({field.name, field.offset, field.datatype, field.count});
+  }
+  packed.data = cloud.data.data();
+  packed.data_size = cloud.data.size();
+  packed.points = static_cast<std::size_t>(cloud.width) * cloud.height;
+  packed.point_step = cloud.point_step;
+  packed.big_endian = cloud.is_bigendian;
+  return packed;
+}
+
 // Accepted names: x, y, z (required); intensity | reflectance | i; ring | channel (any integer
 // type); time (float seconds from the sweep start) | t | time_stamp | timestamp (integer
 // nanoseconds, or float seconds). Throws IoError naming `source` when a required field is

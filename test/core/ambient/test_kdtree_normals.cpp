@@ -9,43 +9,14 @@
 #include "adaptive_lego_loam/core/ambient/skeleton.h"
 #include "adaptive_lego_loam/core/clustering/euclidean_clustering.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "core/ambient/filter_scan.h"
+#include "support/scenes.h"
 #include "support/synthetic.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 using test::Box;
 using test::Scene;
-
-namespace {
-
-// HDL-64E-like layout, evenly spaced, ground possible in rows up to -3.5 deg.
-Config synthetic_config() {
-  Config config;
-  config.sensor = test::even_sensor(64, 1800, -24.9, 2.0);
-  config.sensor.ground_rows = 50;
-  config.sensor.max_range = 100.0;
-  return config;
-}
-
-Scene with_ground(std::vector<Box> boxes) {
-  Scene scene;
-  scene.has_ground = true;
-  scene.ground_z = -1.73;
-  scene.boxes = std::move(boxes);
-  return scene;
-}
-
-Scene corridor() {
-  return with_ground({{{-60, 2.8, -1.73}, {60, 3.0, 3.0}}, {{-60, -3.0, -1.73}, {60, -2.8, 3.0}}});
-}
-
-AmbientFilterResult filter(const Config& config, const Scan& scan) {
-  AmbientFilter ambient(config);
-  AmbientFilterResult result;
-  ambient.process(scan, result);
-  return result;
-}
-
-}  // namespace
 
 TEST(KdTreeBaseline, AgreesOnTheCorridor) {
   const Config config = synthetic_config();

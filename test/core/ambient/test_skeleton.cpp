@@ -9,22 +9,13 @@
 #include "adaptive_lego_loam/core/ambient/skeleton.h"
 #include "adaptive_lego_loam/core/clustering/euclidean_clustering.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "core/ambient/filter_scan.h"
 #include "support/synthetic.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 using test::Box;
 using test::Scene;
-
-namespace {
-
-AmbientFilterResult filter(const Config& config, const Scan& scan) {
-  AmbientFilter ambient(config);
-  AmbientFilterResult result;
-  ambient.process(scan, result);
-  return result;
-}
-
-}  // namespace
 
 TEST(Skeleton, IsExactlyTheIntersectionOnARealScan) {
   const Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
@@ -38,7 +29,9 @@ TEST(Skeleton, IsExactlyTheIntersectionOnARealScan) {
         result.euclidean.point_kept(cell) && result.skeleton_depth.point_kept(cell);
     ASSERT_EQ(result.skeleton[cell] != 0, kept_by_both) << "cell " << cell;
     both += kept_by_both;
-    if (result.skeleton[cell]) ASSERT_FALSE(result.segmentation.ground[cell]);
+    if (result.skeleton[cell]) {
+      ASSERT_FALSE(result.segmentation.ground[cell]);
+    }
   }
   EXPECT_EQ(both, result.skeleton_points);
   EXPECT_EQ(result.skeleton_cloud().size(), static_cast<std::size_t>(both));

@@ -9,22 +9,15 @@
 #include "adaptive_lego_loam/core/ambient/skeleton.h"
 #include "adaptive_lego_loam/core/clustering/euclidean_clustering.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "support/scenes.h"
 #include "support/synthetic.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::test;
 using test::Box;
 using test::Scene;
 
 namespace {
-
-// HDL-64E-like layout, evenly spaced, ground possible in rows up to -3.5 deg.
-Config synthetic_config() {
-  Config config;
-  config.sensor = test::even_sensor(64, 1800, -24.9, 2.0);
-  config.sensor.ground_rows = 50;
-  config.sensor.max_range = 100.0;
-  return config;
-}
 
 std::map<int, int> cluster_sizes_of(const ClusterLabels& labels, const RangeImage& image,
                                     const std::function<bool(const ScanPoint&)>& select) {

@@ -9,94 +9,10 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/loop_closure/pose_graph.h"
+#include "core/loop_closure/drifted_graphs.h"
 
 using namespace adaptive_lego_loam;
-using Poses = std::vector<Eigen::Isometry3d>;
-
-namespace {
-
-constexpr double kDeg = M_PI / 180.0;
-constexpr double kSigmaTranslation = 0.05;  // m, odometry and loop edges
-constexpr double kSigmaRotation = 0.5 * kDeg;
-
-Eigen::Isometry3d planar(double x, double y, double yaw_deg) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = Eigen::AngleAxisd(yaw_deg * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  pose.translation() << x, y, 0.0;
-  return pose;
-}
-
-// 40 poses 1 m apart around a 10 m square, counter-clockwise from the origin heading +x; the
-// last is at (0, 1) heading -y, one step short of the start.
-Poses square_truth() {
-  Poses poses;
-  for (int k = 0; k < 40; ++k) {
-    const int side = k / 10;
-    const double along = k % 10;
-    const double corners[4][2] = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
-    const double directions[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-    poses.push_back(planar(corners[side][0] + along * directions[side][0],
-                           corners[side][1] + along * directions[side][1], 90.0 * side));
-  }
-  return poses;
-}
-
-Poses relative_steps(const Poses& poses) {
-  Poses steps;
-  for (std::size_t k = 1; k < poses.size(); ++k)
-    steps.push_back(poses[k - 1].inverse() * poses[k]);
-  return steps;
-}
-
-// Each step turned by an extra yaw_bias_deg and stretched by (1 + scale_error).
-Poses drifted(const Poses& steps, double yaw_bias_deg, double scale_error) {
-  Poses out;
-  for (const Eigen::Isometry3d& step : steps) {
-    Eigen::Isometry3d measured = step;
-    measured.linear() = step.linear() * planar(0, 0, yaw_bias_deg).linear();
-    measured.translation() = (1.0 + scale_error) * step.translation();
-    out.push_back(measured);
-  }
-  return out;
-}
-
-Poses integrate(const Poses& steps) {
-  Poses poses{Eigen::Isometry3d::Identity()};
-  for (const Eigen::Isometry3d& step : steps)
-    poses.push_back(poses.back() * step);
-  return poses;
-}
-
-// Nodes at `initial`, odometry edges from `steps`, a loop edge 0 -> last measuring `loop`.
-PoseGraph square_graph(const Poses& initial, const Poses& steps, const Eigen::Isometry3d& loop,
-                       const PoseGraphOptions& options = PoseGraphOptions()) {
-  PoseGraph graph(options);
-  for (const Eigen::Isometry3d& pose : initial)
-    graph.add_node(pose);
-  const Information6 information = information_from_sigmas(kSigmaTranslation, kSigmaRotation);
-  for (std::size_t k = 0; k < steps.size(); ++k) {
-    graph.add_edge(
-        {static_cast<int>(k), static_cast<int>(k) + 1, steps[k], information, EdgeKind::kOdometry});
-  }
-  graph.add_edge({0, static_cast<int>(initial.size()) - 1, loop, information, EdgeKind::kLoop});
-  return graph;
-}
-
-double max_position_change(const Poses& a, const Poses& b) {
-  double worst = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k)
-    worst = std::max(worst, (a[k].translation() - b[k].translation()).norm());
-  return worst;
-}
-
-struct DriftCase {
-  Poses truth = square_truth();
-  Poses odometry = drifted(relative_steps(truth), 0.25, 0.01);
-  Poses initial = integrate(odometry);
-  Eigen::Isometry3d true_loop = truth.front().inverse() * truth.back();
-};
-
-}  // namespace
+using namespace adaptive_lego_loam::test;
 
 // The residual is the SE(3) logarithm of the error, whitened: moving the far node by exp(xi)
 // away from the measurement costs exactly 1/2 xi^T information xi, for any coupled information.
@@ -193,15 +109,7 @@ namespace {
 
 // Odometry-only cost at `poses` as a distance: sqrt(2 F_odometry), in odometry sigmas.
 double odometry_deformation(const Poses& poses, const Poses& steps) {
-  PoseGraph graph;
-  for (const Eigen::Isometry3d& pose : poses)
-    graph.add_node(pose);
-  const Information6 information = information_from_sigmas(kSigmaTranslation, kSigmaRotation);
-  for (std::size_t k = 0; k < steps.size(); ++k) {
-    graph.add_edge(
-        {static_cast<int>(k), static_cast<int>(k) + 1, steps[k], information, EdgeKind::kOdometry});
-  }
-  return std::sqrt(2.0 * graph.cost());
+  return std::sqrt(2.0 * odometry_chain(poses, steps).cost());
 }
 
 // How far the loop measurement is from what the odometry says, in odometry sigmas: the least
@@ -209,14 +117,7 @@ double odometry_deformation(const Poses& poses, const Poses& steps) {
 double loop_mahalanobis(const Poses& initial, const Poses& steps, const Eigen::Isometry3d& loop) {
   PoseGraphOptions options;
   options.loop_loss = RobustLoss::kNone;
-  PoseGraph graph(options);
-  for (const Eigen::Isometry3d& pose : initial)
-    graph.add_node(pose);
-  const Information6 information = information_from_sigmas(kSigmaTranslation, kSigmaRotation);
-  for (std::size_t k = 0; k < steps.size(); ++k) {
-    graph.add_edge(
-        {static_cast<int>(k), static_cast<int>(k) + 1, steps[k], information, EdgeKind::kOdometry});
-  }
+  PoseGraph graph = odometry_chain(initial, steps, options);
   graph.add_edge({0, static_cast<int>(initial.size()) - 1, loop,
                   information_from_sigmas(1e-6, 1e-8), EdgeKind::kLoop});
   graph.optimize();

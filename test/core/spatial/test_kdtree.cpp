@@ -14,49 +14,10 @@
 #include "adaptive_lego_loam/core/spatial/kdtree.h"
 #include "adaptive_lego_loam/core/spatial/voxel_filter.h"
 #include "adaptive_lego_loam/core/spatial/voxel_map.h"
+#include "core/spatial/random_clouds.h"
 
 using namespace adaptive_lego_loam;
-
-namespace {
-
-CloudPtr random_cloud(int size, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<float> coordinate(-10.f, 10.f);
-  CloudPtr cloud(new Cloud);
-  for (int i = 0; i < size; ++i) {
-    CloudPoint p;
-    p.x = coordinate(random);
-    p.y = coordinate(random);
-    p.z = 0.1f * coordinate(random);  // flat, as scans are
-    cloud->push_back(p);
-  }
-  // Duplicates and points on one line: ties and zero extents.
-  for (int i = 0; i < 20; ++i)
-    cloud->push_back((*cloud)[i]);
-  for (int i = 0; i < 30; ++i) {
-    CloudPoint p;
-    p.x = 0.5f * static_cast<float>(i);
-    p.y = p.z = 1.f;
-    cloud->push_back(p);
-  }
-  return cloud;
-}
-
-// Squared distances of the k nearest points within the bound, nearest first.
-std::vector<float> brute_force(const Cloud& cloud, const Eigen::Vector3f& query, int k,
-                               float max_squared) {
-  std::vector<float> squared;
-  for (const CloudPoint& p : cloud) {
-    const float dx = p.x - query.x(), dy = p.y - query.y(), dz = p.z - query.z();
-    const float d = dx * dx + dy * dy + dz * dz;  // as the tree sums them
-    if (d <= max_squared) squared.push_back(d);
-  }
-  std::sort(squared.begin(), squared.end());
-  squared.resize(std::min<std::size_t>(squared.size(), k));
-  return squared;
-}
-
-}  // namespace
+using namespace adaptive_lego_loam::test;
 
 TEST(KdTree, MatchesBruteForce) {
   const CloudPtr cloud = random_cloud(3000, 7);
