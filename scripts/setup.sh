@@ -18,6 +18,7 @@ PACKAGES=(
   libpcl-dev libpcl-conversions-dev libpcl-ros-dev libeigen3-dev libceres-dev libyaml-cpp-dev
   libcli11-dev nlohmann-json3-dev libembree-dev libgtest-dev googletest libbenchmark-dev
   python3-numpy python3-matplotlib
+  rviz xvfb xauth x11-utils imagemagick
 )
 
 missing=()

@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, runs every gtest and rostest, and exits non-zero if any test
-# fails or none ran. CI (.ci/run) calls exactly this.
+# Installs what is missing, builds, checks the layout rules, runs every gtest and rostest, and
+# exits non-zero if any test fails or none ran. CI (.ci/run) calls exactly this.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+
+# The house rules the compiler does not check (stage order, no path outside the checkout).
+/usr/bin/python3 "$ALEGO_ROOT/scripts/check_layout.py"
 
 cd "$ALEGO_WS"
 rm -rf build/test_results

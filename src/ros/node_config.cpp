@@ -10,6 +10,9 @@ namespace adaptive_lego_loam::ros_bridge {
 namespace fs = std::filesystem;
 
 std::string package_config_dir() {
+  // The source tree's config/ while it exists (a workspace build): roslib only for an installed
+  // package, as it prints an error when the package is not on ROS_PACKAGE_PATH.
+  if (fs::is_directory(CONFIG_DIR)) return CONFIG_DIR;
   const std::string package = ros::package::getPath("adaptive_lego_loam");
   if (!package.empty() && fs::is_directory(fs::path(package) / "config")) {
     return (fs::path(package) / "config").string();

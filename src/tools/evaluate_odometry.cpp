@@ -12,6 +12,7 @@
 #include "adaptive_lego_loam/eval/metrics.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
+#include "tool_main.h"
 
 using namespace adaptive_lego_loam;
 using nlohmann::json;
@@ -106,16 +107,10 @@ int main(int argc, char** argv) {
   app.add_option("--calib", calib_path,
                  "KITTI calib.txt: its Tr converts camera ground truth to the lidar frame");
   app.add_option("--json", json_path, "also write the numbers to this JSON file");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "evaluate_odometry: %s\n", e.what());
-    return e.get_exit_code();
+  if (const auto status = tools::parse_command_line(app, argc, argv, "evaluate_odometry")) {
+    return *status;
   }
-
-  try {
+  return tools::run_job("evaluate_odometry", [&] {
     std::vector<Eigen::Isometry3d> ground_truth = read_kitti_poses(gt_path);
     const std::vector<Eigen::Isometry3d> estimate = read_kitti_poses(estimate_path);
     if (!calib_path.empty()) {
@@ -130,9 +125,6 @@ int main(int argc, char** argv) {
     }
     if (!json_path.empty()) write_json(json_path, to_json(evaluation));
     print(evaluation);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "evaluate_odometry: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+    return tools::kExitOk;
+  });
 }

@@ -9,6 +9,7 @@
 #include "adaptive_lego_loam/io/progress.h"
 #include "adaptive_lego_loam/ros/kitti_bag.h"
 #include "adaptive_lego_loam/ros/node_config.h"
+#include "tool_main.h"
 
 using namespace adaptive_lego_loam;
 
@@ -31,9 +32,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--frame", options.sensor_frame, "frame_id of the clouds")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
-
-  try {
+  if (const auto status = tools::parse_command_line(app, argc, argv, "kitti_to_bag")) {
+    return *status;
+  }
+  return tools::run_job("kitti_to_bag", [&] {
     std::unique_ptr<ProgressBar> progress;
     const ros_bridge::KittiBagSummary summary =
         ros_bridge::write_kitti_bag(options, [&progress](int done, int total) {
@@ -47,9 +49,6 @@ int main(int argc, char** argv) {
         "left out), ground truth %s\n",
         options.output.c_str(), summary.scans, summary.points - summary.dropped_points,
         summary.dropped_points, summary.ground_truth ? "on /ground_truth" : "none");
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "kitti_to_bag: %s\n", e.what());
-    return 1;
-  }
+    return tools::kExitOk;
+  });
 }

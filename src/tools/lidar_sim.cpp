@@ -23,6 +23,7 @@
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/sequence_writer.h"
 #include "adaptive_lego_loam/sim/simulator.h"
+#include "tool_main.h"
 
 using namespace adaptive_lego_loam;
 using namespace adaptive_lego_loam::sim;
@@ -206,7 +207,7 @@ int run(Options& o) {
       "lidar_sim: %d frames in %.2f s (%.1f frames/s, single thread; %.1f frames/s of CPU "
       "time)\n",
       o.frames, seconds, o.frames / seconds, o.frames / cpu_seconds);
-  return 0;
+  return tools::kExitOk;
 }
 
 }  // namespace
@@ -223,19 +224,17 @@ int main(int argc, char** argv) {
                  "vlp16 (config/vlp16.yaml) or hdl64e (KITTI's, config/kitti.yaml)")
       ->required()
       ->check(CLI::IsMember({"vlp16", "hdl64e"}));
-  app.add_option("--config", o.config_path, "sensor config to take the beam geometry from instead")
-      ->check(CLI::ExistingFile);
+  app.add_option("--config", o.config_path, "sensor config to take the beam geometry from instead");
   app.add_option("--frames", o.frames, "number of scans")
       ->required()
       ->check(CLI::Range(1, 1000000));
   app.add_option("--seed", o.seed, "seed of the scene, the trajectory and the noise (default 1)");
   app.add_option("--output", o.output, "folder to write the sequence to")->required();
-  app.add_option("--trajectory", o.trajectory,
-                 "KITTI ground-truth pose file (camera frame) to drive instead of a synthetic path")
-      ->check(CLI::ExistingFile);
+  app.add_option(
+      "--trajectory", o.trajectory,
+      "KITTI ground-truth pose file (camera frame) to drive instead of a synthetic path");
   app.add_option("--trajectory-times", o.trajectory_times,
-                 "KITTI times file for --trajectory (default: one pose per scan period)")
-      ->check(CLI::ExistingFile);
+                 "KITTI times file for --trajectory (default: one pose per scan period)");
   app.add_option("--bag", o.bag,
                  "also write a rosbag: /velodyne_points (x y z intensity ring time) "
                  "and /ground_truth (nav_msgs/Odometry)");
@@ -259,20 +258,13 @@ int main(int argc, char** argv) {
                  "sensor height above the road, m (default 1.73)")
       ->check(CLI::Range(0.2, 5.0));
   app.add_flag("--overwrite", o.overwrite, "replace a sequence already in --output");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = tools::parse_command_line(app, argc, argv, "lidar_sim")) return *status;
   if (!o.trajectory_times.empty() && o.trajectory.empty()) {
-    std::fprintf(stderr, "lidar_sim: --trajectory-times needs --trajectory\n");
-    return 1;
+    return tools::usage_error("lidar_sim", "--trajectory-times needs --trajectory");
   }
   if (!o.trajectory.empty() && o.speed) {
-    std::fprintf(stderr,
-                 "lidar_sim: --speed applies to synthetic paths only, not with --trajectory\n");
-    return 1;
+    return tools::usage_error("lidar_sim",
+                              "--speed applies to synthetic paths only, not with --trajectory");
   }
-  try {
-    return run(o);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lidar_sim: %s\n", e.what());
-    return 1;
-  }
+  return tools::run_job("lidar_sim", [&] { return run(o); });
 }

@@ -17,6 +17,7 @@
 #include "adaptive_lego_loam/io/progress.h"
 #include "adaptive_lego_loam/io/scan_sequence.h"
 #include "adaptive_lego_loam/ros/bag_sequence.h"
+#include "tool_main.h"
 
 using namespace adaptive_lego_loam;
 namespace fs = std::filesystem;
@@ -192,7 +193,7 @@ int run(const Options& options) {
   if (!failure.empty()) {
     std::fprintf(stderr, "run_sequence: %s (after %d frames; their outputs are written)\n",
                  failure.c_str(), frames);
-    return 1;
+    return tools::kExitFailure;
   }
   const nlohmann::json& frame_ms = summary["frame_ms"];
   std::printf(
@@ -203,7 +204,7 @@ int run(const Options& options) {
       frame_ms.is_null() ? 0.0 : frame_ms["p95"].get<double>(),
       frame_ms.is_null() ? 0.0 : frame_ms["max"].get<double>(), peak_resident_memory_mb(),
       options.output.c_str());
-  return 0;
+  return tools::kExitOk;
 }
 
 }  // namespace
@@ -230,12 +231,9 @@ int main(int argc, char** argv) {
   app.add_flag("--cpu-time", options.cpu_time,
                "stage times (timing.csv, summary.json) in thread CPU time instead of wall-clock "
                "time: what the stages cost on a machine shared with other work");
-  CLI11_PARSE(app, argc, argv);
-  if (options.cpu_time) set_stage_clock(Clock::kThreadCpu);
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "run_sequence: %s\n", e.what());
-    return 1;
+  if (const auto status = tools::parse_command_line(app, argc, argv, "run_sequence")) {
+    return *status;
   }
+  if (options.cpu_time) set_stage_clock(Clock::kThreadCpu);
+  return tools::run_job("run_sequence", [&] { return run(options); });
 }

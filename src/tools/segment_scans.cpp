@@ -11,6 +11,7 @@
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "tool_main.h"
 
 using namespace adaptive_lego_loam;
 
@@ -25,9 +26,10 @@ int main(int argc, char** argv) {
   app.add_option("--beta0", beta0_deg, "depth-clustering threshold in degrees (default: config)")
       ->check(CLI::Range(0.1, 89.9));
   app.add_option("inputs", inputs, "scan files (.bin, .pcd) or folders of them")->required();
-  CLI11_PARSE(app, argc, argv);
-
-  try {
+  if (const auto status = tools::parse_command_line(app, argc, argv, "segment_scans")) {
+    return *status;
+  }
+  return tools::run_job("segment_scans", [&] {
     const Config config = load_config(config_path);
     if (beta0_deg < 0) beta0_deg = config.segmentation.beta0_deg;
     std::vector<std::string> files;
@@ -63,9 +65,6 @@ int main(int argc, char** argv) {
                   result.clusters.clusters(), t.get("projection"), t.get("ground"),
                   t.get("depth_clustering"), t.get("segmented_cloud"), t.total());
     }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "segment_scans: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+    return tools::kExitOk;
+  });
 }

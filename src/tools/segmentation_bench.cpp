@@ -2,7 +2,6 @@
 // a folder of ground-free scans and prints the precision (mean best 3D IoU per labelled box) and
 // the mean milliseconds per frame of the clustering, with the projection timed apart.
 
-#include <unistd.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -16,7 +15,9 @@
 #include "adaptive_lego_loam/eval/clustering_benchmark.h"
 #include "adaptive_lego_loam/eval/clustering_methods.h"
 #include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/progress.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "tool_main.h"
 
 using namespace adaptive_lego_loam;
 using nlohmann::json;
@@ -118,17 +119,15 @@ std::vector<MethodResult> run_benchmark(const std::vector<Frame>& frames, const 
   const Scan first = read_scan_file(frames.front().points_path);
   for (auto& runner : runners)
     runner->cluster(first, warm_up);
-  const bool show_progress = isatty(STDERR_FILENO);
+  ProgressBar progress("segmentation_bench", static_cast<int>(frames.size()));
   for (std::size_t f = 0; f < frames.size(); ++f) {
-    if (show_progress) {
-      std::fprintf(stderr, "\r[%zu/%zu] %s", f + 1, frames.size(), frames[f].name.c_str());
-    }
     const Scan scan = read_scan_file(frames[f].points_path);
     // Every method clusters the frame before the next frame is read: they share its conditions.
     for (std::size_t m = 0; m < methods.size(); ++m)
       run_frame(frames[f], scan, *runners[m], results[m]);
+    progress.update(static_cast<int>(f) + 1);
   }
-  if (show_progress) std::fprintf(stderr, "\r%*s\r", 60, "");
+  progress.finish();
   return results;
 }
 
@@ -269,16 +268,10 @@ int main(int argc, char** argv) {
   app.add_option("--gamma", gamma, "override ambient_filter.euclidean_gamma")
       ->check(CLI::Range(0.1, 100.0));
   app.add_option("--json", json_path, "also write the results, with each box's IoU, to this file");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "segmentation_bench: %s\n", e.what());
-    return e.get_exit_code() != 0 ? e.get_exit_code() : 1;
+  if (const auto status = tools::parse_command_line(app, argc, argv, "segmentation_bench")) {
+    return *status;
   }
-
-  try {
+  return tools::run_job("segmentation_bench", [&] {
     const std::vector<ClusteringMethod> methods = methods_from_name(method_arg);
     Config config = load_config(config_path);
     if (window) config.ambient.euclidean_window = *window;
@@ -289,9 +282,6 @@ int main(int argc, char** argv) {
     print_table(results);
     print_comparison(results);
     if (!json_path.empty()) write_json(json_path, to_json(frames, results, config));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "segmentation_bench: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+    return tools::kExitOk;
+  });
 }

@@ -13,8 +13,8 @@
 
 namespace adaptive_lego_loam::ros_bridge {
 
-// The package's config directory: from roslib when the package is on ROS_PACKAGE_PATH, else
-// the source tree's config/ this library was built from.
+// The package's config directory: the source tree's config/ this library was built from while it
+// exists, else roslib's (an installed package).
 std::string package_config_dir();
 
 // ~config when set and not empty, else <config dir>/<~sensor>.yaml (~sensor defaults to vlp16).
