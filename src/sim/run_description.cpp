@@ -73,6 +73,8 @@ std::string run_yaml(const RunDescription& run) {
   out << YAML::BeginMap;
   out << YAML::Key << "generator" << YAML::Value << "adaptive_lego_loam lidar_sim";
   out << YAML::Key << "seed" << YAML::Value << run.request.seed;
+  out << YAML::Key << "scene_seed" << YAML::Value << run.request.scene();
+  if (run.request.laps != 1) out << YAML::Key << "laps" << YAML::Value << run.request.laps;
   out << YAML::Key << "frames" << YAML::Value << run.request.frames;
   out << YAML::Key << "frame_period_s" << YAML::Value << run.request.frame_period;
   out << YAML::Key << "trajectory" << YAML::Value

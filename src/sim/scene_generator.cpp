@@ -63,6 +63,8 @@ void make_prototypes(World& world, const ScenarioParams& p, Layout& layout, Rng&
 }
 
 void check_request(const SceneRequest& r) {
+  if (r.laps < 1)
+    throw std::invalid_argument("laps = " + std::to_string(r.laps) + ": expected at least 1");
   if (r.frames < 1)
     throw std::invalid_argument("frames = " + std::to_string(r.frames) + ": expected at least 1");
   if (!(r.frame_period > 0.0)) throw std::invalid_argument("frame period must be positive");
@@ -101,14 +103,14 @@ double drive_recorded(const SceneRequest& request, const Shake& shake, Generated
 double drive_synthetic(const SceneRequest& request, const HeightField& hills, const Shake& shake,
                        GeneratedScene& scene) {
   const ScenarioParams& p = request.scenario;
-  Rng speed_rng(derive_seed(request.seed, kSpeedStream));
+  Rng speed_rng(derive_seed(request.scene(), kSpeedStream));
   SpeedProfile speed{p.cruise_speed_mps, p.speed_variation, 20.0,
                      speed_rng.uniform(0.0, 2.0 * M_PI)};
   const double sweep_end = request.frames * request.frame_period;
   const double lead = lead_length(request);
   double ego_start_s = lead;
   if (p.kind == ScenarioKind::kLoop) {
-    const double lap = speed.distance(sweep_end);
+    const double lap = speed.distance(sweep_end) / request.laps;
     const std::vector<PathPiece> pieces = loop_pieces(std::max(kMinLoopLength, lap));
     scene.path = synthetic_path(pieces, true, hills);
     ego_start_s = 0.5 * pieces.front().length;  // halfway along the first straight
@@ -116,7 +118,7 @@ double drive_synthetic(const SceneRequest& request, const HeightField& hills, co
     // requested frames end where they began.
     if (lap > kMinLoopLength) speed.cruise_mps *= scene.path->length() / lap;
   } else {
-    Rng path_rng(derive_seed(request.seed, kPathStream));
+    Rng path_rng(derive_seed(request.scene(), kPathStream));
     const double length = 2.0 * lead + speed.distance(sweep_end + request.frame_period);
     scene.path = synthetic_path(open_pieces(p.kind, length, lead, path_rng), false, hills);
   }
@@ -192,12 +194,12 @@ RoadPlan plan_road(const SceneRequest& request, const Path& path, TerrainModel& 
   const ScenarioParams& p = request.scenario;
   RoadPlan plan;
   if (p.kind == ScenarioKind::kHighway) {
-    Rng rng(derive_seed(request.seed, kRoadsideStream));
+    Rng rng(derive_seed(request.scene(), kRoadsideStream));
     plan.highway = plan_highway(path, rng);
     terrain.add_berms(highway_berms(plan.highway, p.road_half_width));
   }
   if (p.kind == ScenarioKind::kUrban || p.kind == ScenarioKind::kLoop) {
-    Rng rng(derive_seed(request.seed, kJunctionStream));
+    Rng rng(derive_seed(request.scene(), kJunctionStream));
     plan.side_streets = plan_junctions(path, p, terrain, rng);
     terrain.add_side_streets(plan.side_streets);
   }
@@ -218,8 +220,8 @@ std::shared_ptr<World> populate(const SceneRequest& request, const GeneratedScen
     build_road(*world, *street.path, side_street_cross_section(street), {}, street.corner);
   if (!p.tunnel) build_terrain(*world, path, terrain, request.reach);
 
-  Rng plant_rng(derive_seed(request.seed, kPlantStream));
-  Rng layout_rng(derive_seed(request.seed, kLayoutStream));
+  Rng plant_rng(derive_seed(request.scene(), kPlantStream));
+  Rng layout_rng(derive_seed(request.scene(), kLayoutStream));
   Placer placer(path);
   Layout layout{*world, path, terrain, p, layout_rng, placer, {}, {}};
   make_prototypes(*world, p, layout, plant_rng);
@@ -249,7 +251,7 @@ GeneratedScene generate_scene(const SceneRequest& request) {
   check_request(request);
   const ScenarioParams& p = request.scenario;
   const bool recorded = !request.trajectory_poses.empty();
-  Rng hill_rng(derive_seed(request.seed, kHillStream));
+  Rng hill_rng(derive_seed(request.scene(), kHillStream));
   const HeightField hills =
       recorded ? HeightField() : HeightField(hill_rng, p.hill_amplitude_m, p.hill_wavelength_m, 3);
   const HeightField relief(hill_rng, p.relief_amplitude_m, p.relief_wavelength_m, 4);

@@ -37,6 +37,8 @@ struct Options {
   std::string scenario, sensor, config_path, output, trajectory, trajectory_times, bag;
   int frames = 0;
   uint64_t seed = 1;
+  std::optional<uint64_t> scene_seed;
+  int laps = 1;
   std::optional<int> columns;
   double range_noise = 0.02;
   std::optional<std::string> motion_distortion, rough_road;
@@ -68,6 +70,8 @@ SceneRequest make_request(const Options& o, const SensorParams& sensor) {
   if (o.leaf_jitter) request.scenario.leaf_jitter_m = *o.leaf_jitter;
   request.scenario.rough_road = on_off(o.rough_road, request.scenario.rough_road);
   request.seed = o.seed;
+  request.scene_seed = o.scene_seed;
+  request.laps = o.laps;
   request.frames = o.frames;
   request.frame_period = sensor.scan_period;
   request.sensor_height = o.sensor_height;
@@ -228,7 +232,14 @@ int main(int argc, char** argv) {
   app.add_option("--frames", o.frames, "number of scans")
       ->required()
       ->check(CLI::Range(1, 1000000));
-  app.add_option("--seed", o.seed, "seed of the scene, the trajectory and the noise (default 1)");
+  app.add_option("--seed", o.seed,
+                 "seed of the noise, wind and moving objects, and of the scene and trajectory "
+                 "unless --scene-seed is given (default 1)");
+  app.add_option("--scene-seed", o.scene_seed,
+                 "seed of the scene, its path and the drive along it: the same place driven "
+                 "again with another --seed");
+  app.add_option("--laps", o.laps, "a loop scenario goes round this many times (default 1)")
+      ->check(CLI::Range(1, 100));
   app.add_option("--output", o.output, "folder to write the sequence to")->required();
   app.add_option(
       "--trajectory", o.trajectory,

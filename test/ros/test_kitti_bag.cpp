@@ -172,7 +172,9 @@ TEST(KittiBag, SixteenOfItsRingsTrackLikeAVlp16) {
   int frames = 0;
   while (const std::optional<Scan> scan = sequence->next()) {
     const FrameResult& result = pipeline.process(*scan);
-    if (frames > 0) EXPECT_TRUE(result.mapping.matched) << "frame " << frames;
+    if (frames > 0) {
+      EXPECT_TRUE(result.mapping.matched) << "frame " << frames;
+    }
     ++frames;
   }
   ASSERT_EQ(frames, 5);

@@ -199,6 +199,55 @@ TEST(SimScenarios, LoopComesBackToItsStart) {
   EXPECT_GT(farthest, 40.0);
 }
 
+TEST(SimScenarios, ALoopDrivenThreeTimesPassesItsStartEachLap) {
+  const int frames = 600;
+  SceneRequest request = request_for(ScenarioKind::kLoop, 3, frames);
+  request.laps = 3;
+  const GeneratedScene scene = generate_scene(request);
+  const Trajectory& trajectory = *scene.trajectory;
+  const Eigen::Vector3d start = trajectory.sensor_pose(0.0).translation();
+  for (int lap = 1; lap <= 3; ++lap) {
+    const double t = trajectory.frame_time(lap * frames / 3);
+    EXPECT_LT((trajectory.sensor_pose(t).translation() - start).norm(), 0.5) << "lap " << lap;
+  }
+  const double t = trajectory.frame_time(frames / 6);
+  EXPECT_GT((trajectory.sensor_pose(t).translation() - start).norm(), 20.0) << "half a lap";
+  request.laps = 0;
+  EXPECT_THROW(generate_scene(request), std::invalid_argument);
+}
+
+// The same scene seed, another seed: the same place driven the same way, with other moving
+// objects and other noise.
+TEST(SimScenarios, SceneSeedFixesThePlaceAndTheDriveSeedTheRest) {
+  SceneRequest first = request_for(ScenarioKind::kUrban, 1);
+  first.scene_seed = 7;
+  SceneRequest second = first;
+  second.seed = 2;
+  const GeneratedScene a = generate_scene(first);
+  const GeneratedScene b = generate_scene(second);
+  ASSERT_EQ(a.world->tiles.size(), b.world->tiles.size());
+  for (auto ia = a.world->tiles.begin(), ib = b.world->tiles.begin(); ia != a.world->tiles.end();
+       ++ia, ++ib) {
+    EXPECT_EQ(ia->second.vertices, ib->second.vertices);
+  }
+  ASSERT_EQ(a.world->plants.size(), b.world->plants.size());
+  for (std::size_t i = 0; i < a.world->plants.size(); ++i)
+    EXPECT_EQ(a.world->plants[i].base, b.world->plants[i].base);
+  for (int frame = 0; frame < 3; ++frame) {
+    const double t = a.trajectory->frame_time(frame);
+    EXPECT_TRUE(a.trajectory->sensor_pose(t).isApprox(b.trajectory->sensor_pose(t), 1e-12));
+  }
+  bool cars_differ = a.world->moving_cars.size() != b.world->moving_cars.size();
+  for (std::size_t i = 0; !cars_differ && i < a.world->moving_cars.size(); ++i)
+    cars_differ = a.world->moving_cars[i].motion.start_s != b.world->moving_cars[i].motion.start_s;
+  EXPECT_TRUE(cars_differ);
+  // Without a scene seed, the seed is the scene's too: seed 7 builds scene seed 7's place.
+  const GeneratedScene plain = generate_scene(request_for(ScenarioKind::kUrban, 7));
+  ASSERT_EQ(plain.world->plants.size(), a.world->plants.size());
+  for (std::size_t i = 0; i < a.world->plants.size(); ++i)
+    EXPECT_EQ(plain.world->plants[i].base, a.world->plants[i].base);
+}
+
 TEST(SimScenarios, RoughRoadShakesTheSensor) {
   // Roll over one second, in steps shorter than a sweep.
   auto roll_spread = [](ScenarioKind kind) {

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,7 +63,12 @@ ScenarioParams default_scenario(ScenarioKind kind);
 
 struct SceneRequest {
   ScenarioParams scenario;
+  // The scene, its path and the drive along it come from scene_seed (the seed when unset); the
+  // seed alone then changes the moving objects, the rough road's shake, the wind and the
+  // sensor's noise: the same place driven again.
   uint64_t seed = 1;
+  std::optional<uint64_t> scene_seed;
+  int laps = 1;  // a loop scenario goes round this many times in the requested frames
   int frames = 100;
   double frame_period = 0.1;
   double sensor_height = 1.73;  // above the road
@@ -70,6 +76,8 @@ struct SceneRequest {
   // A recorded trajectory (vehicle axes: x forward, z up) with its times; empty: a synthetic path.
   std::vector<double> trajectory_times;
   std::vector<Eigen::Isometry3d> trajectory_poses;
+
+  uint64_t scene() const { return scene_seed ? *scene_seed : seed; }
 };
 
 struct GeneratedScene {

@@ -237,6 +237,16 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.number("local_map_radius", m.local_map_radius, 1.0, 1000.0);
   in.number("local_map_keyframes", m.local_map_keyframes, 1, 10000);
   in.number("local_map_lag_keyframes", m.local_map_lag_keyframes, 0, 10000);
+  in.number("keyframe_merge_group", m.keyframe_merge_group, 1, 1000);
+  in.number("keyframe_merge_after", m.keyframe_merge_after, 1, 1000000);
+  in.number("keyframe_merge_radius", m.keyframe_merge_radius, 0.0, 10000.0);
+  if (m.keyframe_merge_group > 1 &&
+      m.keyframe_merge_after < m.local_map_keyframes + m.local_map_lag_keyframes) {
+    in.fail("mapping.keyframe_merge_after",
+            "must be at least mapping.local_map_keyframes + mapping.local_map_lag_keyframes (" +
+                std::to_string(m.local_map_keyframes + m.local_map_lag_keyframes) +
+                "): the local map's keyframes are not merged");
+  }
   in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
   in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
   in.number("max_motion_change", m.max_motion_change, 0.0, 100.0);

@@ -17,16 +17,18 @@ namespace {
 // A rigid transform needs three point pairs; fewer cannot be checked at all.
 constexpr std::size_t kMinIcpPoints = 3;
 
-void append(Cloud& into, const CloudPtr& cloud) {
-  if (cloud) into += *cloud;
+std::size_t points_of(const Keyframe& keyframe) {
+  return keyframe.has_clouds() ? keyframe.corners->size() + keyframe.surfaces->size() : 0;
 }
 
+// Its corners and surfaces in the map frame.
 CloudPtr cloud_in_map(const Keyframe& keyframe) {
-  Cloud sensor_frame;
-  append(sensor_frame, keyframe.corners);
-  append(sensor_frame, keyframe.surfaces);
-  append(sensor_frame, keyframe.outliers);
-  return transform_cloud(sensor_frame, keyframe.pose);
+  CloudPtr cloud(new Cloud);
+  if (!keyframe.has_clouds()) return cloud;
+  cloud->reserve(points_of(keyframe));
+  keyframe.corners->unpack(keyframe.pose, *cloud);
+  keyframe.surfaces->unpack(keyframe.pose, *cloud);
+  return cloud;
 }
 
 bool old_enough(const Keyframe& candidate, const Keyframe& current,
@@ -98,7 +100,8 @@ int find_loop_candidate(const std::vector<Keyframe>& keyframes, int current_inde
   int nearest = -1;
   double nearest_distance = 0.0;
   for (int i = 0; i < static_cast<int>(keyframes.size()); ++i) {
-    if (i == current_index || !old_enough(keyframes[i], current, params)) continue;
+    if (i == current_index || !keyframes[i].has_clouds()) continue;
+    if (!old_enough(keyframes[i], current, params)) continue;
     const double distance = (keyframes[i].pose.translation() - position).norm();
     if (distance > params.search_radius) continue;
     if (nearest < 0 || distance < nearest_distance) {
@@ -187,10 +190,8 @@ void LoopDetectionJob::add_to_map() {
     // Growing the table as it fills would re-insert every voxel in one step; the neighbourhood's
     // keyframes overlap, about 4 points or more to a voxel.
     std::size_t total = 0;
-    for (const Keyframe& keyframe : work.map_keyframes) {
-      for (const CloudPtr& cloud : {keyframe.corners, keyframe.surfaces, keyframe.outliers})
-        total += cloud ? cloud->size() : 0;
-    }
+    for (const Keyframe& keyframe : work.map_keyframes)
+      total += points_of(keyframe);
     work.map_sums->reserve(total / 4);
   }
   std::size_t points = 0;

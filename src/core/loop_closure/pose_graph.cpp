@@ -135,7 +135,8 @@ void PoseGraph::add_edge(const PoseGraphEdge& edge) {
 Eigen::Isometry3d PoseGraph::pose(int node) const {
   const Node& n = nodes_.at(node);
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = Eigen::Quaterniond(n.rotation).toRotationMatrix();
+  // Normalised: the solver keeps the quaternion on the unit sphere only up to rounding.
+  pose.linear() = Eigen::Quaterniond(n.rotation).normalized().toRotationMatrix();
   pose.translation() = Eigen::Vector3d(n.translation);
   return pose;
 }

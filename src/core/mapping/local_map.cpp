@@ -8,8 +8,8 @@ LocalMap::Placement::Placement(const MappingParams& params)
     : corners(params.corner_voxel, kSearchRadius), surfaces(params.surface_voxel, kSearchRadius) {}
 
 void LocalMap::Placement::put_in(const Keyframe& keyframe) {
-  CloudPtr placed_corners = transform_cloud(*keyframe.corners, keyframe.pose);
-  CloudPtr placed_surfaces = transform_cloud(*keyframe.surfaces, keyframe.pose);
+  CloudPtr placed_corners = keyframe.corners->unpack(keyframe.pose);
+  CloudPtr placed_surfaces = keyframe.surfaces->unpack(keyframe.pose);
   corners.add(*placed_corners);
   surfaces.add(*placed_surfaces);
   placed[keyframe.index] = {std::move(placed_corners), std::move(placed_surfaces)};
@@ -44,6 +44,7 @@ std::vector<int> LocalMap::select(const std::vector<Keyframe>& keyframes,
   // MappingParams::local_map_lag_keyframes).
   const int newest = static_cast<int>(keyframes.size()) - 1;
   for (int i = newest - std::min(params_.local_map_lag_keyframes, newest); i >= 0; --i) {
+    if (!keyframes[i].has_clouds()) continue;
     if ((keyframes[i].pose.translation() - position).squaredNorm() > radius_squared) continue;
     chosen.push_back(i);
     if (static_cast<int>(chosen.size()) >= params_.local_map_keyframes) break;

@@ -16,6 +16,7 @@ LidarMapping::LidarMapping(const Config& config)
       first_sweep_distorted_(!config.sensor.deskewed),
       graph_(config.loop_closure),
       local_map_(config.mapping),
+      merger_(config.mapping),
       matcher_(config.mapping) {}
 
 void LidarMapping::start_loop_closure(double stamp) {
@@ -87,12 +88,12 @@ void LidarMapping::add_keyframe(const FeatureSet& features, double stamp) {
   keyframe.frame = scans_;
   keyframe.stamp = stamp;
   keyframe.pose = pose_;
-  keyframe.corners = keyframe_filter_(*features.less_sharp, params_.corner_voxel);
+  keyframe.corners = pack(*keyframe_filter_(*features.less_sharp, params_.corner_voxel));
   keyframe.surfaces =
-      keyframe_filter_(*features.less_flat, *features.outliers, params_.surface_voxel);
-  keyframe.outliers = features.outliers;
+      pack(*keyframe_filter_(*features.less_flat, *features.outliers, params_.surface_voxel));
   graph_.add_keyframe(keyframe);
   keyframes_.push_back(std::move(keyframe));
+  merger_.merge_old(keyframes_);
 }
 
 void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose,

@@ -93,16 +93,13 @@ inline std::vector<Keyframe> keyframes_along(const Poses& truth, const Poses& es
     keyframe.index = keyframe.frame = static_cast<int>(k);
     keyframe.stamp = static_cast<double>(k);
     keyframe.pose = estimates[k];
-    // Split the samples over the three clouds so that all of them are used.
+    // Split the samples over both clouds so that both are used.
     const CloudPtr all = observe(patches, truth[k], 1000 + static_cast<unsigned>(k));
-    keyframe.corners.reset(new Cloud);
-    keyframe.surfaces.reset(new Cloud);
-    keyframe.outliers.reset(new Cloud);
-    for (std::size_t i = 0; i < all->size(); ++i) {
-      Cloud& into =
-          i % 5 == 0 ? *keyframe.corners : (i % 5 == 1 ? *keyframe.outliers : *keyframe.surfaces);
-      into.push_back((*all)[i]);
-    }
+    Cloud corners, surfaces;
+    for (std::size_t i = 0; i < all->size(); ++i)
+      (i % 5 == 0 ? corners : surfaces).push_back((*all)[i]);
+    keyframe.corners = pack(corners);
+    keyframe.surfaces = pack(surfaces);
     keyframes.push_back(keyframe);
   }
   return keyframes;

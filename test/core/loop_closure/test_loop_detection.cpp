@@ -34,12 +34,12 @@ void expect_same_detection(const LoopDetection& a, const LoopDetection& b) {
   EXPECT_TRUE(same_bits(a.relative_pose, b.relative_pose));
 }
 
-// A keyframe's three clouds in the map frame.
+// A keyframe's clouds in the map frame.
 Cloud placed(const Keyframe& keyframe) {
-  Cloud sensor_frame = *keyframe.corners;
-  sensor_frame += *keyframe.surfaces;
-  sensor_frame += *keyframe.outliers;
-  return *transform_cloud(sensor_frame, keyframe.pose);
+  Cloud cloud;
+  keyframe.corners->unpack(keyframe.pose, cloud);
+  keyframe.surfaces->unpack(keyframe.pose, cloud);
+  return cloud;
 }
 
 // What detect_loop documents, with PCL's ICP run in one align() on its own KD-tree.
@@ -143,7 +143,6 @@ TEST(LoopClosure, MismatchedCloudIsRejectedByFitness) {
   Keyframe& last = scene_case.keyframes[39];
   last.corners = elsewhere[39].corners;
   last.surfaces = elsewhere[39].surfaces;
-  last.outliers = elsewhere[39].outliers;
   const LoopClosureParams params;
   const LoopDetection loop = detect_loop(scene_case.keyframes, 39, params);
   std::printf("[ measured ] mismatched cloud: %s, fitness %.3f m^2\n", to_string(loop.status),
@@ -161,8 +160,7 @@ TEST(LoopClosure, EmptyCloudsAndDisabled) {
   params.enabled = true;
   Keyframe& last = scene_case.keyframes[39];
   last.corners.reset();
-  last.surfaces.reset(new Cloud);
-  last.outliers.reset();
+  last.surfaces = pack(Cloud());
   EXPECT_EQ(detect_loop(scene_case.keyframes, 39, params).status, LoopStatus::kTooFewPoints);
   EXPECT_THROW(detect_loop(scene_case.keyframes, 40, params), std::out_of_range);
 }
@@ -177,7 +175,6 @@ TEST(LoopClosure, SteppedIcpEqualsPclIcpInOneAlign) {
       keyframes_along(mismatched.truth, mismatched.estimates, 99);
   mismatched.keyframes[39].corners = elsewhere[39].corners;
   mismatched.keyframes[39].surfaces = elsewhere[39].surfaces;
-  mismatched.keyframes[39].outliers = elsewhere[39].outliers;
   const LoopClosureParams params;
   for (const OffsetCase* scene_case : {&matching, &mismatched}) {
     const LoopDetection loop = detect_loop(scene_case->keyframes, 39, params);
@@ -228,9 +225,8 @@ TEST(LoopClosure, JobWithoutCandidateOrPointsIsDoneAtOnce) {
   EXPECT_TRUE(no_candidate.step());
 
   OffsetCase empty;
-  empty.keyframes[39].corners.reset(new Cloud);
-  empty.keyframes[39].surfaces.reset(new Cloud);
-  empty.keyframes[39].outliers.reset(new Cloud);
+  empty.keyframes[39].corners = pack(Cloud());
+  empty.keyframes[39].surfaces = pack(Cloud());
   LoopDetectionJob too_few(empty.keyframes, 39, params);
   EXPECT_TRUE(too_few.done());
   EXPECT_EQ(too_few.detection().status, LoopStatus::kTooFewPoints);

@@ -25,13 +25,14 @@ std::vector<Keyframe> keyframes_along_x(int count) {
   for (int i = 0; i < count; ++i) {
     keyframes[i].index = i;
     keyframes[i].pose.translation() = Eigen::Vector3d(i, 0.0, 0.0);
-    keyframes[i].corners.reset(new Cloud);
-    keyframes[i].surfaces.reset(new Cloud);
+    Cloud surface;
     CloudPoint p;
     p.x = 0.f;
     p.y = 0.f;
     p.z = -1.f;
-    keyframes[i].surfaces->push_back(p);
+    surface.push_back(p);
+    keyframes[i].corners = pack(Cloud());
+    keyframes[i].surfaces = pack(surface);
   }
   return keyframes;
 }

@@ -47,8 +47,8 @@ TEST(ScanToMap, MatchesThroughTheOldPlacementAfterALoop) {
   params.max_iterations = 5;
   LocalMap map(params);
   Keyframe keyframe;
-  keyframe.corners.reset(new Cloud);
-  keyframe.surfaces = room_corner();
+  keyframe.corners = pack(Cloud());
+  keyframe.surfaces = pack(*room_corner());
   map.update({keyframe}, Eigen::Vector3d::Zero());
 
   Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();

@@ -130,6 +130,15 @@ struct MappingParams {
   // The newest keyframes left out of the local map: matched against its own last few metres, a
   // VLP-16 scan inherits their drift (docs/METHOD.md, Mapping).
   int local_map_lag_keyframes = 0;
+  // Keyframes older than the newest keyframe_merge_after are merged keyframe_merge_group at a
+  // time: their clouds join one of them, voxel-filtered (a place seen from ten keyframes is stored
+  // once), and a group where an older merged keyframe already lies is not stored again. Memory
+  // then grows with the ground covered, not with the time driven. 1 turns merging off.
+  int keyframe_merge_group = 10;
+  int keyframe_merge_after = 100;
+  // m: a merged keyframe keeps the points within this distance of it (points farther away are
+  // sparse, and other keyframes see them closer); 0 keeps all.
+  double keyframe_merge_radius = 20.0;
   double degeneracy_eigenvalue = 100;  // LOAM's threshold on the normal equations' eigenvalues
   // Weight of a prior pulling the translation along the ambient filter's weak direction toward
   // the odometry's prediction, times mu; 0 turns it off.

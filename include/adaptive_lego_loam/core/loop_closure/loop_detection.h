@@ -38,13 +38,13 @@ struct LoopDetection {
   bool accepted() const { return status == LoopStatus::kAccepted; }
 };
 
-// The keyframe nearest to keyframes[current_index] (3-D distance between positions) within
-// search_radius and with a stamp at least min_time_gap older; -1 when there is none. Ties go to
-// the lower index.
+// The keyframe holding clouds nearest to keyframes[current_index] (3-D distance between
+// positions) within search_radius and with a stamp at least min_time_gap older; -1 when there is
+// none. Ties go to the lower index.
 int find_loop_candidate(const std::vector<Keyframe>& keyframes, int current_index,
                         const LoopClosureParams& params);
 
-// Finds a candidate and aligns the current keyframe's cloud (corners + surfaces + outliers, placed
+// Finds a candidate and aligns the current keyframe's cloud (corners + surfaces, placed
 // in the map frame by its pose; every n-th point, at most icp_max_points) to the candidate's map:
 // the candidate and up to neighbourhood_keyframes keyframes on either side of it (leaving out any
 // less than min_time_gap older than the current one), in the map frame, voxel-filtered. Accepted

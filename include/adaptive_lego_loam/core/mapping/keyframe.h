@@ -1,10 +1,11 @@
 #pragma once
-// Keyframes: the scans the map is built from, with their features in the sensor frame.
+// Keyframes: the scans the map is built from, with their features in the sensor frame, packed
+// (a long run keeps thousands of them).
 
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "adaptive_lego_loam/core/common/cloud.h"
+#include "adaptive_lego_loam/core/common/packed_cloud.h"
 
 namespace adaptive_lego_loam {
 
@@ -13,9 +14,11 @@ struct Keyframe {
   int frame = 0;                                           // input frame it was taken at
   double stamp = 0.0;                                      // s
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // sensor pose in the map frame
-  CloudPtr corners;                                        // sharp + less sharp edges, sensor frame
-  CloudPtr surfaces;  // flat + less flat surfaces (down-sampled), sensor frame
-  CloudPtr outliers;  // LeGO-LOAM's outlier cloud, sensor frame (used as surfaces)
+  // Voxel-filtered, sensor frame: the sharp and less sharp edges; the flat and less flat surfaces
+  // with LeGO-LOAM's outlier cloud (used as surfaces).
+  PackedCloudPtr corners, surfaces;
+
+  bool has_clouds() const { return corners && surfaces; }
 };
 
 }  // namespace adaptive_lego_loam

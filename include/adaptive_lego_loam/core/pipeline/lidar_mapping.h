@@ -11,6 +11,7 @@
 #include "adaptive_lego_loam/core/common/timing.h"
 #include "adaptive_lego_loam/core/loop_closure/keyframe_graph.h"
 #include "adaptive_lego_loam/core/mapping/keyframe.h"
+#include "adaptive_lego_loam/core/mapping/keyframe_merging.h"
 #include "adaptive_lego_loam/core/mapping/local_map.h"
 #include "adaptive_lego_loam/core/mapping/scan_to_map.h"
 #include "adaptive_lego_loam/core/mapping/transform_fusion.h"
@@ -73,6 +74,7 @@ class LidarMapping {
   double last_loop_attempt_ = -1e18;
   int loops_closed_ = 0;
   LocalMap local_map_;
+  KeyframeMerger merger_;
   ScanToMapMatcher matcher_;
   TransformFusion fusion_;
   // Their tables sized by what each filters: the scan's few coarse voxels, a keyframe's many.

@@ -1,0 +1,37 @@
+#pragma once
+// Bounded memory for long runs: keyframes that have left the recent window are merged a group at
+// a time. The group's clouds join its middle keyframe's (in that keyframe's frame, voxel-filtered:
+// consecutive keyframes see mostly the same points), and the others keep their pose only. A group
+// whose middle keyframe lies where an older merged keyframe already is (a place driven again)
+// keeps no cloud at all. Local map, loop closure and saved maps use the keyframes that hold
+// clouds; every keyframe stays a node of the pose graph.
+
+#include <vector>
+
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/mapping/keyframe.h"
+#include "adaptive_lego_loam/core/spatial/voxel_filter.h"
+
+namespace adaptive_lego_loam {
+
+class KeyframeMerger {
+ public:
+  explicit KeyframeMerger(const MappingParams& params);
+  // Merges every group that is old enough now; returns how many groups it merged.
+  int merge_old(std::vector<Keyframe>& keyframes);
+  // Keyframes before this index are merged.
+  int merged_until() const { return next_; }
+
+ private:
+  void merge_group(std::vector<Keyframe>& keyframes, int first, int last);
+  bool place_is_stored(const std::vector<Keyframe>& keyframes, int anchor) const;
+  // The points of `cloud` (anchor frame) within keyframe_merge_radius.
+  Cloud within_radius(const Cloud& cloud) const;
+
+  MappingParams params_;
+  int next_ = 0;
+  std::vector<int> anchors_;  // merged keyframes that kept a cloud
+  VoxelFilter filter_;
+};
+
+}  // namespace adaptive_lego_loam
