@@ -19,6 +19,8 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev libembree-dev libgtest-dev googletest libbenchmark-dev
   python3-numpy python3-matplotlib
   rviz xvfb xauth x11-utils imagemagick
+  python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-nav-msgs python3-tf2-msgs
+  python3-visualization-msgs python3-rosgraph-msgs
 )
 
 missing=()
@@ -38,7 +40,7 @@ fi
 
 mkdir -p "$WS/src"
 ln -sfn "$ROOT" "$WS/src/adaptive_lego_loam"
-echo "setup: building in $WS (log: $WS/build.log)"
+echo "setup: building in $WS (a few minutes the first time; log: $WS/build.log)"
 if ! catkin_make -C "$WS" -DCMAKE_BUILD_TYPE=Release \
     -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 \
     -j2 "$@" >"$WS/build.log" 2>&1; then

@@ -2,6 +2,7 @@
 
 #include <ros/console.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace adaptive_lego_loam::ros_bridge {
@@ -48,10 +49,24 @@ void StageSummary::add(const StageTimes& times, double now_s) {
   all_ms_ += times.total();
 }
 
+StageSummary::~StageSummary() {
+  // A short run (a bag of a few scans) ends before the first period: say what it did.
+  if (const auto line = report_remaining()) ROS_INFO("%s", line->c_str());
+}
+
 std::optional<std::string> StageSummary::report(double now_s) {
   if (!start_s_ || frames_ == 0 || now_s - *start_s_ < period_s_) return std::nullopt;
+  return line(now_s);
+}
+
+std::optional<std::string> StageSummary::report_remaining(double now_s) {
+  if (!start_s_ || frames_ == 0) return std::nullopt;
+  return line(now_s);
+}
+
+std::string StageSummary::line(double now_s) {
   char number[64];
-  std::snprintf(number, sizeof(number), "%.1f", frames_ / (now_s - *start_s_));
+  std::snprintf(number, sizeof(number), "%.1f", frames_ / std::max(now_s - *start_s_, 1e-9));
   std::string line = label_ + ": " + number + " frames/s over " + std::to_string(frames_) +
                      " frames; ms per frame:";
   for (const auto& [stage, ms] : total_ms_) {

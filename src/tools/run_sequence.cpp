@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -56,15 +57,34 @@ class Outputs {
     fs::create_directories(dir);
     timing_.open(path("timing.csv"));
     degeneration_.open(path("degeneration.csv"));
-    if (!timing_ || !degeneration_) throw IoError(dir + ": cannot write outputs there");
+    loops_.open(path("loops.csv"));
+    if (!timing_ || !degeneration_ || !loops_) throw IoError(dir + ": cannot write outputs there");
+    loops_ << "frame,current_keyframe,matched_keyframe,source,status,inlier_ratio,inlier_mse,"
+              "fitness,closed\n";
     timing_ << "frame";
     for (const auto& stage : kStages)
       timing_ << "," << stage;
     timing_ << ",total,rss_mb\n";
-    degeneration_ << "frame,mu,beta0_deg,direction_x,direction_y,skeleton_points,normals,valid\n";
+    degeneration_ << "frame,mu,beta0_deg,direction_x,direction_y,skeleton_points,normals,valid,"
+                     "map_degenerate_directions\n";
   }
 
   std::string path(const std::string& name) const { return (fs::path(dir_) / name).string(); }
+
+  // A loop-closure attempt that finished on a scan, or loops that entered the graph on it.
+  void add_loop(int frame, const std::optional<LoopDetection>& loop, bool closed) {
+    if (!loop && !closed) return;
+    loops_ << frame << ",";
+    if (loop) {
+      loops_ << loop->current_index << "," << loop->matched_index << ","
+             << (loop->source == CandidateSource::kPlace ? "place" : "radius") << ","
+             << (loop->accepted() ? "verified" : to_string(loop->status)) << ","
+             << loop->inlier_ratio << "," << loop->inlier_mse << "," << loop->fitness;
+    } else {
+      loops_ << ",,,,,,";
+    }
+    loops_ << "," << int(closed) << "\n";
+  }
 
   void add(const FrameResult& frame, const AmbientFilterResult& filtered) {
     timing_ << frame.frame;
@@ -74,7 +94,8 @@ class Outputs {
     const Degeneration& d = filtered.degeneration;
     degeneration_ << frame.frame << "," << filtered.mu << "," << filtered.beta0_deg << ","
                   << d.weak_direction.x() << "," << d.weak_direction.y() << ","
-                  << filtered.skeleton_points << "," << d.normals << "," << int(d.valid) << "\n";
+                  << filtered.skeleton_points << "," << d.normals << "," << int(d.valid) << ","
+                  << frame.mapping.degenerate_directions << "\n";
     stamps.push_back(frame.stamp);
     for (const auto& [stage, ms] : frame.times.entries())
       stage_ms[stage].push_back(ms);
@@ -87,8 +108,14 @@ class Outputs {
 
  private:
   std::string dir_;
-  std::ofstream timing_, degeneration_;
+  std::ofstream timing_, degeneration_, loops_;
 };
+
+// Nearest rank: the smallest value with at least that share of the values at or below it.
+std::size_t percentile_rank(std::size_t count, double share) {
+  const auto rank = static_cast<std::size_t>(std::ceil(share * count));
+  return std::clamp<std::size_t>(rank, 1, count) - 1;
+}
 
 nlohmann::json statistics(std::vector<double> values) {
   if (values.empty()) return nullptr;
@@ -98,7 +125,7 @@ nlohmann::json statistics(std::vector<double> values) {
     sum += v;
   return {{"mean", sum / values.size()},
           {"median", values[values.size() / 2]},
-          {"p95", values[static_cast<std::size_t>(0.95 * (values.size() - 1))]},
+          {"p95", values[percentile_rank(values.size(), 0.95)]},
           {"max", values.back()}};
 }
 
@@ -148,6 +175,7 @@ int run(const Options& options) {
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
       outputs.add(result, pipeline.filter_result());
+      outputs.add_loop(result.frame, result.loop, result.loop_closed);
       progress.update(++frames);
     }
   } catch (const std::exception& e) {
@@ -178,6 +206,14 @@ int run(const Options& options) {
   summary["scans_without_valid_points"] = empty_scans;
   summary["keyframes"] = pipeline.keyframes().size();
   summary["loops_closed"] = pipeline.mapping().loops_closed();
+  const LoopClosureCounts& loops = pipeline.mapping().loop_closure_counts();
+  summary["loop_closure"] = {{"place_candidates", loops.place_candidates},
+                             {"radius_candidates", loops.radius_candidates},
+                             {"verified", loops.verified},
+                             {"rejected", loops.rejected},
+                             {"unconfirmed", loops.unconfirmed},
+                             {"closed", loops.closed},
+                             {"removed", loops.removed}};
   if (!final_loop_closure.is_null()) summary["loop_closure_after_last_scan"] = final_loop_closure;
   summary["motion_gated_scans"] = motion_gated_scans;
   summary["wall_time_s"] = wall_s;

@@ -47,6 +47,20 @@ TEST(StageSummary, ReportsRateAndMeanMillisecondsOncePerPeriod) {
   EXPECT_NE(next->find("over 1 frames"), std::string::npos) << *next;
 }
 
+TEST(StageSummary, AShortRunStillGetsItsLine) {
+  StageSummary summary("map_optimization", 10.0);
+  EXPECT_FALSE(summary.report_remaining(0.0)) << "nothing to say before any frame";
+  StageTimes times;
+  times.add("mapping", 4.0);
+  for (int frame = 0; frame < 5; ++frame)
+    summary.add(times, 0.1 * frame);
+  EXPECT_FALSE(summary.report(0.5)) << "the period has not passed";
+  const auto line = summary.report_remaining(0.5);
+  ASSERT_TRUE(line);
+  EXPECT_NE(line->find("over 5 frames"), std::string::npos) << *line;
+  EXPECT_FALSE(summary.report_remaining(0.6)) << "reported once";
+}
+
 TEST(StageSummary, FormatsOneFrame) {
   StageTimes times;
   times.add("deskew", 0.126);

@@ -52,6 +52,10 @@ class StageSummary {
   // `label` starts the line (the node's name).
   StageSummary(std::string label, double period_s)
       : label_(std::move(label)), period_s_(period_s) {}
+  // Logs what is not reported yet (INFO).
+  ~StageSummary();
+  StageSummary(const StageSummary&) = delete;
+  StageSummary& operator=(const StageSummary&) = delete;
   // One processed frame and its stage times.
   void add(const StageTimes& times) { add(times, steady_seconds()); }
   void add(const StageTimes& times, double now_s);
@@ -60,8 +64,12 @@ class StageSummary {
   // total 7.9", and a new period starts. Nothing otherwise.
   std::optional<std::string> report() { return report(steady_seconds()); }
   std::optional<std::string> report(double now_s);
+  // The same line for the frames since the last report, however short the period.
+  std::optional<std::string> report_remaining() { return report_remaining(steady_seconds()); }
+  std::optional<std::string> report_remaining(double now_s);
 
  private:
+  std::string line(double now_s);
   std::string label_;
   double period_s_;
   std::optional<double> start_s_;

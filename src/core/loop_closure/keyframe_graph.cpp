@@ -69,13 +69,33 @@ void KeyframeGraph::set_poses(const std::vector<Keyframe>& keyframes) {
     graph_.set_pose(i, keyframes[i].pose);
 }
 
-LoopOptimization::LoopOptimization(const KeyframeGraph& graph, const LoopDetection& loop,
+int KeyframeGraph::remove_loops_off_by(double sigmas) {
+  int removed = 0;
+  for (int edge = static_cast<int>(graph_.edges().size()) - 1; edge >= 0; --edge) {
+    if (graph_.edges()[edge].kind != EdgeKind::kLoop) continue;
+    if (graph_.residual_norm(edge) <= sigmas) continue;
+    graph_.remove_edge(edge);
+    ++removed;
+  }
+  return removed;
+}
+
+int KeyframeGraph::loops() const {
+  int count = 0;
+  for (const PoseGraphEdge& edge : graph_.edges())
+    count += edge.kind == EdgeKind::kLoop;
+  return count;
+}
+
+LoopOptimization::LoopOptimization(const KeyframeGraph& graph,
+                                   const std::vector<LoopDetection>& loops,
                                    const LoopClosureParams& params)
-    : loop_(loop),
+    : loops_(loops),
       with_loop_(graph),
       iterations_per_step_(params.graph_iterations_per_scan),
       max_iterations_(graph.graph().options().max_iterations) {
-  with_loop_.add_loop(loop);
+  for (const LoopDetection& loop : loops)
+    with_loop_.add_loop(loop);
   optimized_ = reduce_graph(with_loop_.graph(), params.graph_max_nodes);
 }
 
@@ -104,7 +124,8 @@ Eigen::Isometry3d LoopOptimization::apply(KeyframeGraph& graph,
   const Eigen::Isometry3d motion = keyframes[covered - 1].pose * last_before.inverse();
   for (std::size_t i = covered; i < keyframes.size(); ++i)
     keyframes[i].pose = motion * keyframes[i].pose;
-  graph.add_loop(loop_);
+  for (const LoopDetection& loop : loops_)
+    graph.add_loop(loop);
   graph.set_poses(keyframes);
   return motion;
 }

@@ -21,14 +21,32 @@ std::size_t points_of(const Keyframe& keyframe) {
   return keyframe.has_clouds() ? keyframe.corners->size() + keyframe.surfaces->size() : 0;
 }
 
-// Its corners and surfaces in the map frame.
-CloudPtr cloud_in_map(const Keyframe& keyframe) {
+// Its corners and surfaces placed by `pose`.
+CloudPtr cloud_at(const Keyframe& keyframe, const Eigen::Isometry3d& pose) {
   CloudPtr cloud(new Cloud);
   if (!keyframe.has_clouds()) return cloud;
   cloud->reserve(points_of(keyframe));
-  keyframe.corners->unpack(keyframe.pose, *cloud);
-  keyframe.surfaces->unpack(keyframe.pose, *cloud);
+  keyframe.corners->unpack(pose, *cloud);
+  keyframe.surfaces->unpack(pose, *cloud);
   return cloud;
+}
+
+CloudPtr cloud_in_map(const Keyframe& keyframe) {
+  return cloud_at(keyframe, keyframe.pose);
+}
+
+// The points of the current keyframe that verify a loop: those within verify_radius of it (the
+// candidate's map holds that much around each keyframe), placed by `guess`.
+CloudPtr verification_source(const Keyframe& keyframe, const Eigen::Isometry3d& guess,
+                             const LoopClosureParams& params) {
+  const CloudPtr sensor_frame = cloud_at(keyframe, Eigen::Isometry3d::Identity());
+  const float squared_radius = static_cast<float>(params.verify_radius * params.verify_radius);
+  Cloud near;
+  near.reserve(sensor_frame->size());
+  for (const CloudPoint& p : *sensor_frame) {
+    if (p.getVector3fMap().squaredNorm() <= squared_radius) near.push_back(p);
+  }
+  return transform_cloud(near, guess);
 }
 
 bool old_enough(const Keyframe& candidate, const Keyframe& current,
@@ -87,20 +105,24 @@ const char* to_string(LoopStatus status) {
       return "too few points";
     case LoopStatus::kNotConverged:
       return "ICP did not converge";
-    case LoopStatus::kPoorFitness:
-      return "ICP fitness too high";
+    case LoopStatus::kTooFewInliers:
+      return "too few inliers";
   }
   return "unknown";
 }
 
-int find_loop_candidate(const std::vector<Keyframe>& keyframes, int current_index,
-                        const LoopClosureParams& params) {
+const char* to_string(CandidateSource source) {
+  return source == CandidateSource::kPlace ? "place recognition" : "radius search";
+}
+
+std::optional<LoopCandidate> radius_candidate(const std::vector<Keyframe>& keyframes,
+                                              int current_index, const LoopClosureParams& params) {
   const Keyframe& current = keyframes.at(current_index);
   const Eigen::Vector3d position = current.pose.translation();
   int nearest = -1;
   double nearest_distance = 0.0;
   for (int i = 0; i < static_cast<int>(keyframes.size()); ++i) {
-    if (i == current_index || !keyframes[i].has_clouds()) continue;
+    if (i == current_index || !keyframes[i].has_clouds() || keyframes[i].degenerate) continue;
     if (!old_enough(keyframes[i], current, params)) continue;
     const double distance = (keyframes[i].pose.translation() - position).norm();
     if (distance > params.search_radius) continue;
@@ -109,7 +131,12 @@ int find_loop_candidate(const std::vector<Keyframe>& keyframes, int current_inde
       nearest_distance = distance;
     }
   }
-  return nearest;
+  if (nearest < 0) return std::nullopt;
+  LoopCandidate candidate;
+  candidate.matched_index = nearest;
+  candidate.source = CandidateSource::kRadius;
+  candidate.guess = current.pose;
+  return candidate;
 }
 
 struct LoopDetectionJob::Work {
@@ -120,11 +147,12 @@ struct LoopDetectionJob::Work {
   std::optional<VoxelSums> map_sums;    // with voxel_size > 0
   CloudPtr map{new Cloud};  // the map to align to (gathered here directly without a filter)
   CloudPtr source;
-  Eigen::Isometry3d current_pose, matched_pose;
+  Eigen::Isometry3d current_pose, guess, matched_pose;
   std::unique_ptr<SteppedIcp> icp;
 };
 
 LoopDetectionJob::LoopDetectionJob(const std::vector<Keyframe>& keyframes, int current_index,
+                                   const std::optional<LoopCandidate>& candidate,
                                    const LoopClosureParams& params)
     : params_(params) {
   if (current_index < 0 || current_index >= static_cast<int>(keyframes.size())) {
@@ -137,15 +165,18 @@ LoopDetectionJob::LoopDetectionJob(const std::vector<Keyframe>& keyframes, int c
     detection_.status = LoopStatus::kDisabled;
     return;
   }
-  detection_.matched_index = find_loop_candidate(keyframes, current_index, params);
-  if (detection_.matched_index >= 0) {
+  if (candidate) {
+    detection_.matched_index = candidate->matched_index;
+    detection_.source = candidate->source;
     work_ = std::make_unique<Work>();
     if (params.voxel_size > 0.0) work_->map_sums.emplace(params.voxel_size);
     work_->map_keyframes =
         neighbourhood(keyframes, detection_.matched_index, current_index, params);
-    work_->source = sample(cloud_in_map(keyframes[current_index]), params.icp_max_points);
+    work_->source = sample(verification_source(keyframes[current_index], candidate->guess, params),
+                           params.icp_max_points);
     work_->current_pose = keyframes[current_index].pose;
-    work_->matched_pose = keyframes[detection_.matched_index].pose;
+    work_->guess = candidate->guess;
+    work_->matched_pose = keyframes.at(detection_.matched_index).pose;
     if (work_->source->size() < kMinIcpPoints) finish(LoopStatus::kTooFewPoints);
   } else {
     finish(LoopStatus::kNoCandidate);
@@ -234,7 +265,7 @@ void LoopDetectionJob::iterate_icp() {
   SteppedIcp& icp = *work_->icp;
   for (int piece = 0; piece < params_.icp_iterations_per_scan; ++piece) {
     if (icp.converged() || icp.iterations() >= params_.icp_max_iterations) {
-      conclude(icp.fitness(), icp.transformation());
+      conclude(icp);
       return;
     }
     icp.iterate();
@@ -246,14 +277,19 @@ void LoopDetectionJob::iterate_icp() {
   }
 }
 
-void LoopDetectionJob::conclude(double fitness, const Eigen::Matrix4f& transformation) {
-  detection_.fitness = fitness;
-  detection_.correction = isometry_of(transformation);
-  if (fitness >= params_.fitness_threshold) {
-    finish(LoopStatus::kPoorFitness);
+void LoopDetectionJob::conclude(SteppedIcp& icp) {
+  detection_.fitness = icp.fitness();
+  const SteppedIcp::Inliers inliers = icp.inliers(params_.inlier_distance);
+  detection_.inlier_ratio = inliers.ratio;
+  detection_.inlier_mse = inliers.mean_squared_distance;
+  // ICP moved the source from the guess: the current keyframe belongs there.
+  const Eigen::Isometry3d corrected = isometry_of(icp.transformation()) * work_->guess;
+  detection_.correction = corrected * work_->current_pose.inverse();
+  if (inliers.ratio < params_.min_inlier_ratio ||
+      inliers.mean_squared_distance > params_.max_inlier_mse) {
+    finish(LoopStatus::kTooFewInliers);
     return;
   }
-  const Eigen::Isometry3d corrected = detection_.correction * work_->current_pose;
   detection_.relative_pose = work_->matched_pose.inverse() * corrected;
   finish(LoopStatus::kAccepted);
 }
@@ -264,14 +300,25 @@ void LoopDetectionJob::finish(LoopStatus status) {
 }
 
 LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
+                          const std::optional<LoopCandidate>& candidate,
                           const LoopClosureParams& params) {
   LoopClosureParams unbounded = params;
   unbounded.map_points_per_scan = std::numeric_limits<int>::max();
   unbounded.icp_iterations_per_scan = std::numeric_limits<int>::max();
-  LoopDetectionJob job(keyframes, current_index, unbounded);
+  LoopDetectionJob job(keyframes, current_index, candidate, unbounded);
   while (!job.step()) {
   }
   return job.detection();
+}
+
+LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
+                          const LoopClosureParams& params) {
+  if (current_index < 0 || current_index >= static_cast<int>(keyframes.size())) {
+    throw std::out_of_range("detect_loop: keyframe " + std::to_string(current_index) + " of " +
+                            std::to_string(keyframes.size()));
+  }
+  return detect_loop(keyframes, current_index, radius_candidate(keyframes, current_index, params),
+                     params);
 }
 
 }  // namespace adaptive_lego_loam

@@ -177,6 +177,21 @@ void PoseGraph::build_problem(std::vector<Node>& nodes, ceres::Problem& problem)
   }
 }
 
+double PoseGraph::residual_norm(int edge) const {
+  const PoseGraphEdge& e = edges_.at(edge);
+  const Node& from = nodes_[e.from];
+  const Node& to = nodes_[e.to];
+  const RelativePoseResidual residual(e.measurement, whitenings_[edge]);
+  Eigen::Matrix<double, 6, 1> r;
+  residual(from.rotation, from.translation, to.rotation, to.translation, r.data());
+  return r.norm();
+}
+
+void PoseGraph::remove_edge(int edge) {
+  edges_.erase(edges_.begin() + edge);
+  whitenings_.erase(whitenings_.begin() + edge);
+}
+
 double PoseGraph::cost() const {
   if (edges_.empty()) return 0.0;
   std::vector<Node> nodes = nodes_;

@@ -4,6 +4,7 @@
 #include <pcl/search/kdtree.h>
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 
@@ -45,6 +46,12 @@ class PointKdTreeSearch : public pcl::search::KdTree<CloudPoint> {
   PointKdTree points_;
   mutable std::vector<uint32_t> found_;  // index buffer, kept to spare an allocation a query
 };
+
+Eigen::Isometry3d isometry(const Eigen::Matrix4f& transformation) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.matrix() = transformation.cast<double>();
+  return pose;
+}
 
 // PCL's point-to-point ICP one iteration per iterate(), the same iterations as one align() would
 // run, bit for bit: each call aligns the cloud the previous one left (align() from the identity,
@@ -99,6 +106,24 @@ class PclSteppedIcp : public pcl::IterativeClosestPoint<CloudPoint, CloudPoint> 
     return getFitnessScore();
   }
 
+  SteppedIcp::Inliers inliers(double max_distance) const {
+    const CloudPtr moved = transform_cloud(*source_, isometry(transformation_so_far_));
+    const float max_squared = static_cast<float>(max_distance * max_distance);
+    pcl::Indices index(1);
+    std::vector<float> squared(1);
+    std::size_t count = 0;
+    double sum = 0.0;
+    for (const CloudPoint& p : *moved) {
+      if (tree_->nearestKSearch(p, 1, index, squared) < 1 || squared[0] > max_squared) continue;
+      ++count;
+      sum += squared[0];
+    }
+    SteppedIcp::Inliers result;
+    result.ratio = moved->empty() ? 0.0 : double(count) / moved->size();
+    result.mean_squared_distance = count ? sum / count : std::numeric_limits<double>::infinity();
+    return result;
+  }
+
  private:
   State state() const { return convergence_criteria_->getConvergenceState(); }
 
@@ -136,6 +161,10 @@ Eigen::Matrix4f SteppedIcp::transformation() const {
 }
 double SteppedIcp::fitness() {
   return impl_->fitness();
+}
+
+SteppedIcp::Inliers SteppedIcp::inliers(double max_distance) const {
+  return impl_->inliers(max_distance);
 }
 
 }  // namespace adaptive_lego_loam

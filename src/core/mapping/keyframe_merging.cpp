@@ -6,24 +6,26 @@ namespace adaptive_lego_loam {
 
 KeyframeMerger::KeyframeMerger(const MappingParams& params) : params_(params) {}
 
-int KeyframeMerger::merge_old(std::vector<Keyframe>& keyframes) {
+int KeyframeMerger::merge_old(std::vector<Keyframe>& keyframes,
+                              std::vector<std::pair<int, int>>* revisits) {
   if (params_.keyframe_merge_group <= 1) return 0;
   int merged = 0;
   const int size = static_cast<int>(keyframes.size());
   while (next_ + params_.keyframe_merge_group <= size - params_.keyframe_merge_after) {
-    merge_group(keyframes, next_, next_ + params_.keyframe_merge_group - 1);
+    const int last = next_ + params_.keyframe_merge_group - 1;
+    if (!merge_group(keyframes, next_, last) && revisits) revisits->emplace_back(next_, last);
     next_ += params_.keyframe_merge_group;
     ++merged;
   }
   return merged;
 }
 
-void KeyframeMerger::merge_group(std::vector<Keyframe>& keyframes, int first, int last) {
+bool KeyframeMerger::merge_group(std::vector<Keyframe>& keyframes, int first, int last) {
   const int anchor = (first + last) / 2;
   if (place_is_stored(keyframes, anchor)) {
     for (int i = first; i <= last; ++i)
       keyframes[i].corners.reset(), keyframes[i].surfaces.reset();
-    return;
+    return false;
   }
   Cloud corners, surfaces;
   const Eigen::Isometry3d to_anchor = keyframes[anchor].pose.inverse();
@@ -39,6 +41,7 @@ void KeyframeMerger::merge_group(std::vector<Keyframe>& keyframes, int first, in
   keyframes[anchor].corners = pack(within_radius(*filter_(corners, params_.corner_voxel)));
   keyframes[anchor].surfaces = pack(within_radius(*filter_(surfaces, params_.surface_voxel)));
   anchors_.push_back(anchor);
+  return true;
 }
 
 Cloud KeyframeMerger::within_radius(const Cloud& cloud) const {

@@ -1,5 +1,6 @@
 #include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "adaptive_lego_loam/core/spatial/voxel_filter.h"
@@ -15,17 +16,24 @@ LidarMapping::LidarMapping(const Config& config)
       loop_params_(config.loop_closure),
       first_sweep_distorted_(!config.sensor.deskewed),
       graph_(config.loop_closure),
+      places_(config.loop_closure),
       local_map_(config.mapping),
       merger_(config.mapping),
       matcher_(config.mapping) {}
 
 void LidarMapping::start_loop_closure(double stamp) {
   const int newest = static_cast<int>(keyframes_.size()) - 1;
+  if (keyframes_[newest].degenerate) return;
   // The candidate search is cheap and runs at every keyframe; the rest at most once a period.
-  if (find_loop_candidate(keyframes_, newest, loop_params_) < 0) return;
+  std::optional<LoopCandidate> candidate = places_.candidate(keyframes_, newest);
+  if (!candidate) candidate = radius_candidate(keyframes_, newest, loop_params_);
+  if (!candidate) return;
   if (stamp - last_loop_attempt_ < kLoopAttemptPeriod) return;
+  if (stamp - last_closure_ < loop_params_.min_closure_interval) return;
   last_loop_attempt_ = stamp;
-  loop_job_.emplace(keyframes_, newest, loop_params_);
+  ++(candidate->source == CandidateSource::kPlace ? counts_.place_candidates
+                                                  : counts_.radius_candidates);
+  loop_job_.emplace(keyframes_, newest, candidate, loop_params_);
 }
 
 std::optional<LoopDetection> LidarMapping::advance_loop_closure(double stamp, bool new_keyframe) {
@@ -35,31 +43,74 @@ std::optional<LoopDetection> LidarMapping::advance_loop_closure(double stamp, bo
     if (!loop_job_->step()) return std::nullopt;
     const LoopDetection detection = loop_job_->detection();
     loop_job_.reset();
-    if (!detection.accepted()) return detection;
-    // The pose graph's first step waits for the next scan.
-    loop_optimization_.emplace(graph_, detection, loop_params_);
-    return std::nullopt;
+    if (detection.accepted()) {
+      ++counts_.verified;
+      confirm(detection);
+    } else {
+      ++counts_.rejected;
+    }
+    return detection;
   }
-  if (!loop_optimization_ || !loop_optimization_->step()) return std::nullopt;
-  const LoopDetection loop = loop_optimization_->loop();
-  close_loop();
-  return loop;
+  if (loop_optimization_ && loop_optimization_->step()) close_loop();
+  return std::nullopt;
+}
+
+// A loop enters the pose graph with a second verified loop that agrees with it: both sides'
+// poses and the two relative poses form a cycle, which must close within the consistency
+// tolerances.
+bool LidarMapping::loops_agree(const LoopDetection& first, const LoopDetection& second) const {
+  const auto pose = [&](int index) { return keyframes_.at(index).pose; };
+  const Eigen::Isometry3d current_side =
+      pose(first.current_index).inverse() * pose(second.current_index);
+  const Eigen::Isometry3d matched_side =
+      pose(first.matched_index).inverse() * pose(second.matched_index);
+  const Eigen::Isometry3d predicted = matched_side.inverse() * first.relative_pose * current_side;
+  const Eigen::Isometry3d error = predicted.inverse() * second.relative_pose;
+  return error.translation().norm() <= loop_params_.consistency_translation &&
+         Eigen::AngleAxisd(error.rotation()).angle() <=
+             loop_params_.consistency_rotation_deg * M_PI / 180.0;
+}
+
+void LidarMapping::confirm(const LoopDetection& loop) {
+  const auto expired = [&](const LoopDetection& waiting) {
+    return loop.current_index - waiting.current_index > loop_params_.consistency_window;
+  };
+  counts_.unconfirmed += static_cast<int>(std::count_if(pending_.begin(), pending_.end(), expired));
+  pending_.erase(std::remove_if(pending_.begin(), pending_.end(), expired), pending_.end());
+  for (auto waiting = pending_.begin(); waiting != pending_.end(); ++waiting) {
+    if (!loops_agree(*waiting, loop)) continue;
+    // The pose graph's first step waits for the next scan.
+    loop_optimization_.emplace(graph_, std::vector<LoopDetection>{*waiting, loop}, loop_params_);
+    pending_.erase(waiting);
+    return;
+  }
+  pending_.push_back(loop);
 }
 
 void LidarMapping::close_loop() {
   const Eigen::Isometry3d motion = loop_optimization_->apply(graph_, keyframes_);
+  counts_.closed += static_cast<int>(loop_optimization_->loops().size());
+  closed_on_this_scan_ = !loop_optimization_->loops().empty();
+  if (closed_on_this_scan_) last_closure_ = last_stamp_;
   loop_optimization_.reset();
   // The running pose moves with the newest keyframe; the local map is placed again from the
   // corrected keyframes.
   pose_ = motion * pose_;
   local_map_.keyframes_moved(motion);
-  ++loops_closed_;
+  // A loop the optimised graph still cannot meet was wrong: out, and the graph solved without it.
+  const int removed = graph_.remove_loops_off_by(loop_params_.max_loop_residual);
+  if (removed > 0) {
+    counts_.removed += removed;
+    loop_optimization_.emplace(graph_, std::vector<LoopDetection>{}, loop_params_);
+  }
 }
 
 std::optional<LoopDetection> LidarMapping::finish_loop_closure() {
   std::optional<LoopDetection> finished;
-  while (loop_closure_running() && !finished) {
-    finished = advance_loop_closure(0.0, false);
+  while (loop_closure_running()) {
+    if (std::optional<LoopDetection> detection = advance_loop_closure(last_stamp_, false)) {
+      finished = detection;
+    }
   }
   return finished;
 }
@@ -82,18 +133,28 @@ bool LidarMapping::needs_keyframe() const {
          Eigen::AngleAxisd(since.linear()).angle() >= params_.keyframe_angle_deg * M_PI / 180.0;
 }
 
-void LidarMapping::add_keyframe(const FeatureSet& features, double stamp) {
+void LidarMapping::add_keyframe(const FeatureSet& features, double stamp, bool degenerate) {
   Keyframe keyframe;
   keyframe.index = static_cast<int>(keyframes_.size());
   keyframe.frame = scans_;
   keyframe.stamp = stamp;
   keyframe.pose = pose_;
+  keyframe.degenerate = degenerate;
   keyframe.corners = pack(*keyframe_filter_(*features.less_sharp, params_.corner_voxel));
   keyframe.surfaces =
       pack(*keyframe_filter_(*features.less_flat, *features.outliers, params_.surface_voxel));
+  if (loop_params_.enabled && loop_params_.place.enabled && !degenerate) {
+    places_.add(keyframe.index, stamp,
+                places_.describe(
+                    {features.less_sharp.get(), features.less_flat.get(), features.outliers.get()},
+                    keyframe.pose));
+  }
   graph_.add_keyframe(keyframe);
   keyframes_.push_back(std::move(keyframe));
-  merger_.merge_old(keyframes_);
+  std::vector<std::pair<int, int>> revisits;
+  merger_.merge_old(keyframes_, &revisits);
+  for (const auto& [first, last] : revisits)
+    places_.forget(first, last);
 }
 
 void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose,
@@ -130,13 +191,16 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   out.pose = pose_;
   out.keyframe = !(scans_ == 0 && first_sweep_distorted_) && needs_keyframe();
   if (out.keyframe) {
-    add_keyframe(features, stamp);
+    add_keyframe(features, stamp, out.match.degenerate_directions > 0);
     out.times.add("keyframes", watch.lap_ms());
   }
+  last_stamp_ = stamp;
   const bool loop_work = out.keyframe || loop_closure_running();
+  closed_on_this_scan_ = false;
   out.loop = advance_loop_closure(stamp, out.keyframe);
+  out.loop_closed = closed_on_this_scan_;
   if (loop_work) out.times.add("loop_closure", watch.lap_ms());
-  if (out.loop && out.loop->accepted()) {
+  if (out.loop_closed) {
     out.pose = pose_;
     fusion_.update_mapping(odometry_pose, pose_);
   }

@@ -52,7 +52,7 @@ const FrameResult& Pipeline::process(const Scan& scan) {
   result_.keyframe = mapping_out_.keyframe;
   result_.motion_gated = mapping_out_.motion_gated;
   result_.loop = mapping_out_.loop;
-  result_.loop_closed = mapping_out_.loop && mapping_out_.loop->accepted();
+  result_.loop_closed = mapping_out_.loop_closed;
   return result_;
 }
 

@@ -109,7 +109,10 @@ TEST(Params, LoopClosureSection) {
   EXPECT_DOUBLE_EQ(shipped.loop_closure.search_radius, 7.0);
   EXPECT_DOUBLE_EQ(shipped.loop_closure.min_time_gap, 30.0);
   EXPECT_EQ(shipped.loop_closure.neighbourhood_keyframes, 25);
-  EXPECT_DOUBLE_EQ(shipped.loop_closure.fitness_threshold, 0.3);
+  EXPECT_TRUE(shipped.loop_closure.place.enabled);
+  EXPECT_EQ(shipped.loop_closure.place.sectors, 60);
+  EXPECT_DOUBLE_EQ(shipped.loop_closure.min_inlier_ratio, 0.95);
+  EXPECT_EQ(shipped.loop_closure.consistency_window, 30);
   EXPECT_EQ(shipped.loop_closure.robust_loss, RobustLoss::kCauchy);
   EXPECT_EQ(shipped.loop_closure.map_points_per_scan, 20000);
   EXPECT_EQ(shipped.loop_closure.icp_iterations_per_scan, 2);

@@ -116,7 +116,7 @@ TEST(LoopClosure, LoopOptimizationInStepsWhileKeyframesArrive) {
   at_once_graph.add_loop(loop);
   const PoseGraphSummary summary = at_once_graph.optimize(at_once);
 
-  LoopOptimization optimization(stepped_graph, loop, params);
+  LoopOptimization optimization(stepped_graph, {loop}, params);
   EXPECT_THROW(optimization.apply(stepped_graph, stepped), std::logic_error);
   int steps = 0;
   for (bool done = false; !done; ++steps) {
@@ -148,5 +148,28 @@ TEST(LoopClosure, LoopOptimizationInStepsWhileKeyframesArrive) {
     EXPECT_TRUE(graph.pose(k).isApprox(stepped[k].pose, 1e-12)) << "node " << k;
   EXPECT_EQ(graph.edges().back().kind, EdgeKind::kLoop);
 
-  EXPECT_THROW(LoopOptimization(stepped_graph, LoopDetection(), params), std::invalid_argument);
+  EXPECT_THROW(LoopOptimization(stepped_graph, {LoopDetection()}, params), std::invalid_argument);
+}
+
+// A loop the optimised graph cannot meet (one 5 m off, against a drift of centimetres) is removed;
+// the good one stays.
+TEST(LoopClosure, AnInconsistentLoopIsRemovedFromTheGraph) {
+  const OffsetCase scene_case;
+  const LoopClosureParams params;
+  KeyframeGraph graph(params);
+  for (const Keyframe& keyframe : scene_case.keyframes)
+    graph.add_keyframe(keyframe);
+  const LoopDetection good = detect_loop(scene_case.keyframes, 39, params);
+  ASSERT_TRUE(good.accepted());
+  LoopDetection wrong = good;
+  wrong.matched_index = 20;
+  wrong.relative_pose = planar(5.0, 0.0, 0.0) * good.relative_pose;
+  graph.add_loop(good);
+  graph.add_loop(wrong);
+  std::vector<Keyframe> keyframes = scene_case.keyframes;
+  graph.optimize(keyframes);
+  EXPECT_EQ(graph.loops(), 2);
+  EXPECT_EQ(graph.remove_loops_off_by(params.max_loop_residual), 1);
+  EXPECT_EQ(graph.loops(), 1);
+  EXPECT_EQ(graph.remove_loops_off_by(params.max_loop_residual), 0);
 }

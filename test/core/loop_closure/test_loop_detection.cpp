@@ -42,10 +42,31 @@ Cloud placed(const Keyframe& keyframe) {
   return cloud;
 }
 
+// The current keyframe's points within verify_radius, placed by its pose (the radius search's
+// guess).
+Cloud verification_source(const Keyframe& keyframe, const LoopClosureParams& params) {
+  Cloud sensor_frame;
+  keyframe.corners->unpack(Eigen::Isometry3d::Identity(), sensor_frame);
+  keyframe.surfaces->unpack(Eigen::Isometry3d::Identity(), sensor_frame);
+  Cloud near;
+  for (const CloudPoint& p : sensor_frame) {
+    if (p.getVector3fMap().squaredNorm() <= params.verify_radius * params.verify_radius) {
+      near.push_back(p);
+    }
+  }
+  return *transform_cloud(near, keyframe.pose);
+}
+
+int radius_match(const std::vector<Keyframe>& keyframes, int current,
+                 const LoopClosureParams& params) {
+  const std::optional<LoopCandidate> candidate = radius_candidate(keyframes, current, params);
+  return candidate ? candidate->matched_index : -1;
+}
+
 // What detect_loop documents, with PCL's ICP run in one align() on its own KD-tree.
 LoopDetection pcl_one_shot(const std::vector<Keyframe>& keyframes, int current, int matched,
                            const LoopClosureParams& params) {
-  const Cloud current_cloud = placed(keyframes[current]);
+  const Cloud current_cloud = verification_source(keyframes[current], params);
   const std::size_t step =
       (current_cloud.size() + params.icp_max_points - 1) / params.icp_max_points;
   CloudPtr source(new Cloud);
@@ -71,9 +92,13 @@ LoopDetection pcl_one_shot(const std::vector<Keyframe>& keyframes, int current, 
   LoopDetection loop;
   loop.fitness = icp.getFitnessScore();
   const Eigen::Matrix4d t = icp.getFinalTransformation().cast<double>();
-  loop.correction.linear() =
+  Eigen::Isometry3d transformation = Eigen::Isometry3d::Identity();
+  transformation.linear() =
       Eigen::Quaterniond(t.topLeftCorner<3, 3>()).normalized().toRotationMatrix();
-  loop.correction.translation() = t.topRightCorner<3, 1>();
+  transformation.translation() = t.topRightCorner<3, 1>();
+  // As detect_loop: the corrected pose from the guess (here the pose), as a correction of it.
+  const Eigen::Isometry3d& pose = keyframes[current].pose;
+  loop.correction = (transformation * pose) * pose.inverse();
   return loop;
 }
 
@@ -83,16 +108,16 @@ TEST(LoopClosure, CandidateIsNearestOldEnoughKeyframe) {
   const LoopClosureParams params;
   OffsetCase scene_case;
   std::vector<Keyframe>& keyframes = scene_case.keyframes;
-  EXPECT_EQ(find_loop_candidate(keyframes, 39, params), 0);
+  EXPECT_EQ(radius_match(keyframes, 39, params), 0);
   keyframes[39].pose.translation() << 3.2, 1.0, 0.0;
-  EXPECT_EQ(find_loop_candidate(keyframes, 39, params), 3);
+  EXPECT_EQ(radius_match(keyframes, 39, params), 3);
   // Keyframes 0-9 are the only ones 30 s older; none is within 7 m of (-8, 1).
   keyframes[39].pose.translation() << -8.0, 1.0, 0.0;
-  EXPECT_EQ(find_loop_candidate(keyframes, 39, params), -1);
+  EXPECT_EQ(radius_match(keyframes, 39, params), -1);
   EXPECT_EQ(detect_loop(keyframes, 39, params).status, LoopStatus::kNoCandidate);
   LoopClosureParams wide = params;
   wide.search_radius = 8.5;
-  EXPECT_EQ(find_loop_candidate(keyframes, 39, wide), 0);
+  EXPECT_EQ(radius_match(keyframes, 39, wide), 0);
 }
 
 TEST(LoopClosure, RecentKeyframesAreNotCandidates) {
@@ -101,11 +126,11 @@ TEST(LoopClosure, RecentKeyframesAreNotCandidates) {
   for (Keyframe& keyframe : keyframes)
     keyframe.stamp = 0.5 * keyframe.index;  // the whole square in 19.5 s
   const LoopClosureParams params;
-  EXPECT_EQ(find_loop_candidate(keyframes, 39, params), -1);
+  EXPECT_EQ(radius_match(keyframes, 39, params), -1);
   EXPECT_EQ(detect_loop(keyframes, 39, params).status, LoopStatus::kNoCandidate);
   LoopClosureParams short_gap = params;
   short_gap.min_time_gap = 15.0;
-  EXPECT_EQ(find_loop_candidate(keyframes, 39, short_gap), 0);
+  EXPECT_EQ(radius_match(keyframes, 39, short_gap), 0);
 }
 
 // The pose graph assumes a loop measurement good to its sigmas (0.2 m, 1 deg by default); ICP
@@ -117,16 +142,19 @@ TEST(LoopClosure, IcpRecoversOffsetOfLastKeyframe) {
   const OffsetCase scene_case;
   const LoopClosureParams params;
   const LoopDetection loop = detect_loop(scene_case.keyframes, 39, params);
-  ASSERT_EQ(loop.status, LoopStatus::kAccepted) << to_string(loop.status);
+  ASSERT_EQ(loop.status, LoopStatus::kAccepted)
+      << to_string(loop.status) << ": " << loop.inlier_ratio << " inliers, mse " << loop.inlier_mse;
   EXPECT_EQ(loop.matched_index, 0);
   EXPECT_EQ(loop.current_index, 39);
   const Eigen::Isometry3d true_relative = scene_case.truth[0].inverse() * scene_case.truth[39];
   const Eigen::Isometry3d error = true_relative.inverse() * loop.relative_pose;
   std::printf(
-      "[ measured ] loop: fitness %.4f m^2, relative pose off by %.4f m and %.3f deg, "
-      "%.1f ms\n",
-      loop.fitness, error.translation().norm(), rotation_deg(error), loop.time_ms);
-  EXPECT_LT(loop.fitness, params.fitness_threshold);
+      "[ measured ] loop: %.0f %% inliers, their mse %.4f m^2, relative pose off by %.4f m and "
+      "%.3f deg, %.1f ms\n",
+      100.0 * loop.inlier_ratio, loop.inlier_mse, error.translation().norm(), rotation_deg(error),
+      loop.time_ms);
+  EXPECT_GE(loop.inlier_ratio, params.min_inlier_ratio);
+  EXPECT_LE(loop.inlier_mse, params.max_inlier_mse);
   EXPECT_LT(error.translation().norm(), params.loop_sigma_translation);
   EXPECT_LT(rotation_deg(error), params.loop_sigma_rotation_deg);
   // The correction undoes the offset: corrected pose = correction * estimate ~ truth.
@@ -135,7 +163,7 @@ TEST(LoopClosure, IcpRecoversOffsetOfLastKeyframe) {
             params.loop_sigma_translation);
 }
 
-TEST(LoopClosure, MismatchedCloudIsRejectedByFitness) {
+TEST(LoopClosure, MismatchedCloudIsRejectedForTooFewInliers) {
   OffsetCase scene_case;
   // The last keyframe sees a different street: other boxes, same ground.
   const std::vector<Keyframe> elsewhere =
@@ -145,11 +173,12 @@ TEST(LoopClosure, MismatchedCloudIsRejectedByFitness) {
   last.surfaces = elsewhere[39].surfaces;
   const LoopClosureParams params;
   const LoopDetection loop = detect_loop(scene_case.keyframes, 39, params);
-  std::printf("[ measured ] mismatched cloud: %s, fitness %.3f m^2\n", to_string(loop.status),
-              loop.fitness);
+  std::printf("[ measured ] mismatched cloud: %s, %.0f %% inliers, their mse %.3f m^2\n",
+              to_string(loop.status), 100.0 * loop.inlier_ratio, loop.inlier_mse);
   EXPECT_EQ(loop.matched_index, 0);
-  EXPECT_EQ(loop.status, LoopStatus::kPoorFitness);
-  EXPECT_GE(loop.fitness, params.fitness_threshold);
+  EXPECT_EQ(loop.status, LoopStatus::kTooFewInliers);
+  EXPECT_TRUE(loop.inlier_ratio < params.min_inlier_ratio ||
+              loop.inlier_mse > params.max_inlier_mse);
 }
 
 TEST(LoopClosure, EmptyCloudsAndDisabled) {
@@ -200,7 +229,8 @@ TEST(LoopClosure, JobInStepsGivesTheOneShotDetection) {
     LoopClosureParams stepped = params;
     stepped.map_points_per_scan = 1;
     stepped.icp_iterations_per_scan = iterations_per_step;
-    LoopDetectionJob job(scene_case.keyframes, 39, stepped);
+    LoopDetectionJob job(scene_case.keyframes, 39,
+                         radius_candidate(scene_case.keyframes, 39, stepped), stepped);
     int steps = 0;
     while (!job.step())
       ++steps;
@@ -219,7 +249,7 @@ TEST(LoopClosure, JobWithoutCandidateOrPointsIsDoneAtOnce) {
   OffsetCase scene_case;
   LoopClosureParams params;
   scene_case.keyframes[39].pose.translation() << -8.0, 1.0, 0.0;
-  LoopDetectionJob no_candidate(scene_case.keyframes, 39, params);
+  LoopDetectionJob no_candidate(scene_case.keyframes, 39, std::nullopt, params);
   EXPECT_TRUE(no_candidate.done());
   EXPECT_EQ(no_candidate.detection().status, LoopStatus::kNoCandidate);
   EXPECT_TRUE(no_candidate.step());
@@ -227,9 +257,10 @@ TEST(LoopClosure, JobWithoutCandidateOrPointsIsDoneAtOnce) {
   OffsetCase empty;
   empty.keyframes[39].corners = pack(Cloud());
   empty.keyframes[39].surfaces = pack(Cloud());
-  LoopDetectionJob too_few(empty.keyframes, 39, params);
+  LoopDetectionJob too_few(empty.keyframes, 39, radius_candidate(empty.keyframes, 39, params),
+                           params);
   EXPECT_TRUE(too_few.done());
   EXPECT_EQ(too_few.detection().status, LoopStatus::kTooFewPoints);
   EXPECT_EQ(too_few.detection().matched_index, 0);
-  EXPECT_THROW(LoopDetectionJob(empty.keyframes, 40, params), std::out_of_range);
+  EXPECT_THROW(LoopDetectionJob(empty.keyframes, 40, std::nullopt, params), std::out_of_range);
 }

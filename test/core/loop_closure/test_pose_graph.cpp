@@ -240,3 +240,17 @@ TEST(PoseGraph, RejectsBadEdges) {
   EXPECT_TRUE(graph.edges().empty());
   EXPECT_THROW(information_from_sigmas(0.0, 0.1), std::invalid_argument);
 }
+
+TEST(PoseGraph, ResidualOfAnEdgeAndItsRemoval) {
+  PoseGraph graph;
+  graph.add_node(Eigen::Isometry3d::Identity());
+  graph.add_node(planar(1, 0, 0));
+  const Information6 information = information_from_sigmas(0.1, 1.0 * kDeg);
+  graph.add_edge({0, 1, planar(1, 0, 0), information, EdgeKind::kOdometry});
+  graph.add_edge({0, 1, planar(1.3, 0, 0), information, EdgeKind::kLoop});
+  EXPECT_NEAR(graph.residual_norm(0), 0.0, 1e-9) << "the poses meet the odometry exactly";
+  EXPECT_NEAR(graph.residual_norm(1), 3.0, 1e-6) << "0.3 m off at 0.1 m sigma";
+  graph.remove_edge(1);
+  ASSERT_EQ(graph.edges().size(), 1u);
+  EXPECT_EQ(graph.edges()[0].kind, EdgeKind::kOdometry);
+}

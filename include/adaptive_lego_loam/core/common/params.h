@@ -155,15 +155,52 @@ struct MappingParams {
 // poses fades once |r| is well beyond scale.
 enum class RobustLoss { kNone, kHuber, kCauchy };
 
-// Loop detection as LeGO-LOAM (ICP of the newest keyframe against an older one's neighbourhood)
-// and the pose-graph weights used when a loop is closed.
+// Loop candidates from the place descriptor (core/loop_closure/place_descriptor.h), whatever the
+// drift: the keyframes whose ring keys are nearest are compared in full.
+struct PlaceRecognitionParams {
+  bool enabled = true;
+  int rings = 20;
+  int sectors = 60;
+  double max_radius = 80.0;    // m
+  double height_offset = 2.0;  // m added to heights: about the sensor's height above the ground
+  int candidates = 10;         // nearest ring keys compared in full
+  double max_distance = 0.3;   // descriptor distance in [0, 1] up to which a place is the same
+  // Distinctness: the best match must be closer than max_ratio times the best match elsewhere
+  // (more than elsewhere_distance from it); a street of identical houses matches every house
+  // alike, and none is taken.
+  double max_ratio = 0.7;
+  double elsewhere_distance = 20.0;  // m
+};
+
+// Loop closure: candidates from place recognition, else LeGO-LOAM's radius search around the
+// (drifted) position; ICP of the newest keyframe against the candidate's neighbourhood, accepted
+// on inliers; a loop enters the pose graph once a second loop agrees with it.
 struct LoopClosureParams {
   bool enabled = true;
-  double search_radius = 7.0;        // m: candidates lie this close to the current keyframe
-  double min_time_gap = 30.0;        // s: and are at least this much older
+  PlaceRecognitionParams place;
+  double search_radius = 7.0;        // m: radius-search candidates lie this close ...
+  double min_time_gap = 30.0;        // s: and every candidate is at least this much older
   int neighbourhood_keyframes = 25;  // the candidate's map: it and this many on either side
-  double fitness_threshold = 0.3;    // m^2: accepted below this ICP fitness (mean squared distance)
-  double voxel_size = 0.4;           // m: leaf of the candidate's map; 0 = no filter
+  // Verification: the current keyframe's points within verify_radius (the candidate's map holds
+  // merged keyframes' points that near, MappingParams::keyframe_merge_radius) after ICP; accepted
+  // when at least min_inlier_ratio of them lie within inlier_distance of the map and those
+  // inliers' mean squared distance is at most max_inlier_mse.
+  double verify_radius = 20.0;     // m
+  double inlier_distance = 1.0;    // m
+  double min_inlier_ratio = 0.95;  // of the points
+  double max_inlier_mse = 0.1;     // m^2
+  // Consistency: a verified loop waits for a second, verified within consistency_window keyframes,
+  // whose relative pose agrees with it through both sides' odometry; only the pair enters the
+  // pose graph. After each optimisation a loop whose edge is still more than max_loop_residual
+  // sigmas off is removed and the graph solved again.
+  int consistency_window = 30;           // keyframes
+  double consistency_translation = 0.5;  // m
+  double consistency_rotation_deg = 2.0;
+  double max_loop_residual = 10.0;  // sigmas
+  // s: after loops entered the pose graph, the next attempt waits this long (a place driven
+  // again is closed once, not at every keyframe).
+  double min_closure_interval = 10.0;
+  double voxel_size = 0.4;                         // m: leaf of the candidate's map; 0 = no filter
   double icp_max_correspondence_distance = 100.0;  // m
   int icp_max_iterations = 30;
   // ICP aligns every n-th point of the newest keyframe, at most this many: bounds its time.

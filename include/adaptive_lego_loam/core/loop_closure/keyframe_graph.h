@@ -39,6 +39,9 @@ class KeyframeGraph {
   PoseGraphSummary optimize(std::vector<Keyframe>& keyframes);
   // Sets every node's pose from its keyframe (sizes must match).
   void set_poses(const std::vector<Keyframe>& keyframes);
+  // Removes the loop edges whose residual at the current poses exceeds `sigmas`; returns how many.
+  int remove_loops_off_by(double sigmas);
+  int loops() const;
 
   const PoseGraph& graph() const { return graph_; }
 
@@ -49,28 +52,29 @@ class KeyframeGraph {
 };
 
 // add_loop and optimize in bounded steps, for a mapping that keeps adding keyframes meanwhile: a
-// copy of the graph with the loop, reduced to params.graph_max_nodes nodes (reduce_graph), is
+// copy of the graph with the loops, reduced to params.graph_max_nodes nodes (reduce_graph), is
 // optimised params.graph_iterations_per_scan solver iterations a step, each resuming where the
 // last stopped, until it converges or has taken the pose graph's iteration limit
-// (PoseGraphOptions::max_iterations).
+// (PoseGraphOptions::max_iterations). Without loops it solves the graph again as it is (after a
+// loop was removed).
 class LoopOptimization {
  public:
-  // `loop` must be accepted (std::invalid_argument otherwise).
-  LoopOptimization(const KeyframeGraph& graph, const LoopDetection& loop,
+  // Every loop must be accepted (std::invalid_argument otherwise).
+  LoopOptimization(const KeyframeGraph& graph, const std::vector<LoopDetection>& loops,
                    const LoopClosureParams& params);
 
   // Runs the next iterations; true once finished (then does nothing).
   bool step();
   bool done() const { return done_; }
-  const LoopDetection& loop() const { return loop_; }
+  const std::vector<LoopDetection>& loops() const { return loops_; }
 
-  // Once done (std::logic_error before): adds the loop to `graph` and moves the keyframes the
+  // Once done (std::logic_error before): adds the loops to `graph` and moves the keyframes the
   // optimisation covered to its poses and those added since rigidly with the last of them, the
   // graph's nodes with them. Returns that rigid motion (map frame: new pose = motion * old pose).
   Eigen::Isometry3d apply(KeyframeGraph& graph, std::vector<Keyframe>& keyframes) const;
 
  private:
-  LoopDetection loop_;
+  std::vector<LoopDetection> loops_;
   KeyframeGraph with_loop_;  // the graph and the loop, at the poses before
   ReducedGraph optimized_;
   int iterations_per_step_;

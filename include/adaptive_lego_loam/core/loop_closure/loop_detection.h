@@ -1,11 +1,13 @@
 #pragma once
-// Loop detection as LeGO-LOAM: an old keyframe near the newest one is a candidate, and ICP of the
-// newest keyframe's cloud against the candidate's neighbourhood checks the match
+// Loop detection: a candidate (an older keyframe of the same place, from place recognition or
+// LeGO-LOAM's radius search) is checked by ICP of the newest keyframe's cloud against the
+// candidate's neighbourhood, from the candidate's guess, and accepted on inliers
 // (keyframe_graph.h closes the loop in the pose graph).
 
 #include <Eigen/Geometry>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/params.h"
@@ -13,21 +15,39 @@
 
 namespace adaptive_lego_loam {
 
+class SteppedIcp;
+
 enum class LoopStatus {
   kAccepted,
-  kDisabled,      // params.enabled is false
-  kNoCandidate,   // no keyframe near enough and old enough
-  kTooFewPoints,  // the current cloud or the candidate's map is (nearly) empty
-  kNotConverged,  // ICP did not converge
-  kPoorFitness,   // ICP converged with fitness >= fitness_threshold
+  kDisabled,       // params.enabled is false
+  kNoCandidate,    // no keyframe near enough and old enough
+  kTooFewPoints,   // the current cloud or the candidate's map is (nearly) empty
+  kNotConverged,   // ICP did not converge
+  kTooFewInliers,  // ICP converged, but too few points fit the map, or not closely enough
 };
 const char* to_string(LoopStatus status);
+
+enum class CandidateSource { kPlace, kRadius };
+const char* to_string(CandidateSource source);
+
+struct LoopCandidate {
+  int matched_index = -1;
+  CandidateSource source = CandidateSource::kRadius;
+  // The current keyframe's pose in the map frame that ICP starts from.
+  Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
+  double place_distance = 1.0;  // the descriptors' distance (place recognition)
+};
 
 struct LoopDetection {
   LoopStatus status = LoopStatus::kNoCandidate;
   int current_index = -1;
-  int matched_index = -1;                                    // the candidate, once one was found
-  double fitness = std::numeric_limits<double>::infinity();  // m^2, once ICP ran
+  int matched_index = -1;  // the candidate, once one was found
+  CandidateSource source = CandidateSource::kRadius;
+  // Once ICP ran: PCL's fitness (mean squared distance of every source point to the map), the
+  // share of source points within inlier_distance and those inliers' mean squared distance.
+  double fitness = std::numeric_limits<double>::infinity();  // m^2
+  double inlier_ratio = 0.0;
+  double inlier_mse = std::numeric_limits<double>::infinity();  // m^2
   int icp_iterations = 0;
   // ICP's map-frame correction of the current keyframe: corrected pose = correction * pose.
   Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
@@ -38,18 +58,24 @@ struct LoopDetection {
   bool accepted() const { return status == LoopStatus::kAccepted; }
 };
 
-// The keyframe holding clouds nearest to keyframes[current_index] (3-D distance between
-// positions) within search_radius and with a stamp at least min_time_gap older; -1 when there is
-// none. Ties go to the lower index.
-int find_loop_candidate(const std::vector<Keyframe>& keyframes, int current_index,
-                        const LoopClosureParams& params);
+// LeGO-LOAM's candidate: the keyframe holding clouds, not degenerate, nearest to
+// keyframes[current_index] (3-D distance between positions) within search_radius and with a stamp
+// at least min_time_gap older, the guess the current pose; none when there is none. Ties go to
+// the lower index.
+std::optional<LoopCandidate> radius_candidate(const std::vector<Keyframe>& keyframes,
+                                              int current_index, const LoopClosureParams& params);
 
-// Finds a candidate and aligns the current keyframe's cloud (corners + surfaces, placed
-// in the map frame by its pose; every n-th point, at most icp_max_points) to the candidate's map:
-// the candidate and up to neighbourhood_keyframes keyframes on either side of it (leaving out any
-// less than min_time_gap older than the current one), in the map frame, voxel-filtered. Accepted
-// when ICP converged with fitness below fitness_threshold. Throws std::out_of_range for a bad
-// current_index.
+// Aligns the current keyframe's points within verify_radius (corners + surfaces; every n-th
+// point, at most icp_max_points), placed in the map frame by the candidate's guess, to the
+// candidate's map: the candidate and up to neighbourhood_keyframes keyframes on either side of it
+// (leaving out any less than min_time_gap older than the current one), in the map frame,
+// voxel-filtered. Accepted when ICP converged with at least min_inlier_ratio of the points within
+// inlier_distance of the map and their mean squared distance at most max_inlier_mse. Without a
+// candidate: kNoCandidate. Throws std::out_of_range for a bad current_index.
+LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
+                          const std::optional<LoopCandidate>& candidate,
+                          const LoopClosureParams& params);
+// The same with radius_candidate().
 LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
                           const LoopClosureParams& params);
 
@@ -61,10 +87,10 @@ LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_in
 // poses as they are then (their clouds are shared, not copied).
 class LoopDetectionJob {
  public:
-  // Finds the candidate and samples the current keyframe's cloud; throws std::out_of_range for a
-  // bad current_index. Already done when there is nothing to align.
+  // Samples the current keyframe's cloud; throws std::out_of_range for a bad current_index.
+  // Already done when there is nothing to align.
   LoopDetectionJob(const std::vector<Keyframe>& keyframes, int current_index,
-                   const LoopClosureParams& params);
+                   const std::optional<LoopCandidate>& candidate, const LoopClosureParams& params);
   ~LoopDetectionJob();
   LoopDetectionJob(LoopDetectionJob&&) noexcept;
   LoopDetectionJob& operator=(LoopDetectionJob&&) noexcept;
@@ -81,7 +107,7 @@ class LoopDetectionJob {
   void filter_map();
   void prepare_icp();
   void iterate_icp();
-  void conclude(double fitness, const Eigen::Matrix4f& transformation);
+  void conclude(SteppedIcp& icp);
   void finish(LoopStatus status);
 
   LoopClosureParams params_;

@@ -84,6 +84,9 @@ class PoseGraph {
 
   // The cost optimize() minimises, at the current poses.
   double cost() const;
+  // An edge's whitened residual norm |r| (sigmas, before the robust loss), at the current poses.
+  double residual_norm(int edge) const;
+  void remove_edge(int edge);
   PoseGraphSummary optimize();
   // At most max_iterations solver steps, starting from this trust-region radius: a long
   // optimisation run in short calls, each starting with the previous call's

@@ -31,6 +31,13 @@ class SteppedIcp {
   // the source moved by every iteration so far, as align() would leave it.
   double fitness();
 
+  struct Inliers {
+    double ratio = 0.0;                  // of the source points
+    double mean_squared_distance = 0.0;  // m^2, over the inliers (infinite without any)
+  };
+  // The source points within max_distance of the target, moved by every iteration so far.
+  Inliers inliers(double max_distance) const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

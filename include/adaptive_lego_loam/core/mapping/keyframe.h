@@ -17,6 +17,9 @@ struct Keyframe {
   // Voxel-filtered, sensor frame: the sharp and less sharp edges; the flat and less flat surfaces
   // with LeGO-LOAM's outlier cloud (used as surfaces).
   PackedCloudPtr corners, surfaces;
+  // Scan-to-map found directions its scan does not constrain (a tunnel, a bare wall): ICP cannot
+  // tell where such a keyframe is along them, so it takes no part in loop closure.
+  bool degenerate = false;
 
   bool has_clouds() const { return corners && surfaces; }
 };

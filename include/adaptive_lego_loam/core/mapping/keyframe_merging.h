@@ -6,6 +6,7 @@
 // keeps no cloud at all. Local map, loop closure and saved maps use the keyframes that hold
 // clouds; every keyframe stays a node of the pose graph.
 
+#include <utility>
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/params.h"
@@ -17,13 +18,16 @@ namespace adaptive_lego_loam {
 class KeyframeMerger {
  public:
   explicit KeyframeMerger(const MappingParams& params);
-  // Merges every group that is old enough now; returns how many groups it merged.
-  int merge_old(std::vector<Keyframe>& keyframes);
+  // Merges every group that is old enough now; returns how many groups it merged. `revisits`
+  // (may be null) gets the groups found already stored, as [first, last] keyframe indices.
+  int merge_old(std::vector<Keyframe>& keyframes,
+                std::vector<std::pair<int, int>>* revisits = nullptr);
   // Keyframes before this index are merged.
   int merged_until() const { return next_; }
 
  private:
-  void merge_group(std::vector<Keyframe>& keyframes, int first, int last);
+  // Returns false when the group's place was already stored (the group keeps no cloud).
+  bool merge_group(std::vector<Keyframe>& keyframes, int first, int last);
   bool place_is_stored(const std::vector<Keyframe>& keyframes, int anchor) const;
   // The points of `cloud` (anchor frame) within keyframe_merge_radius.
   Cloud within_radius(const Cloud& cloud) const;

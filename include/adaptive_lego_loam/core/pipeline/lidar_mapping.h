@@ -10,6 +10,7 @@
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/core/common/timing.h"
 #include "adaptive_lego_loam/core/loop_closure/keyframe_graph.h"
+#include "adaptive_lego_loam/core/loop_closure/place_recognition.h"
 #include "adaptive_lego_loam/core/mapping/keyframe.h"
 #include "adaptive_lego_loam/core/mapping/keyframe_merging.h"
 #include "adaptive_lego_loam/core/mapping/local_map.h"
@@ -26,9 +27,22 @@ struct MappingOutput {
   bool keyframe = false;
   bool motion_gated = false;  // the odometry's motion was implausible: the guess kept the velocity
   // When a loop-closure attempt finished on this scan (it started at an earlier keyframe and ran
-  // a bounded piece a scan since; an accepted loop has moved the poses on this scan).
+  // a bounded piece a scan since).
   std::optional<LoopDetection> loop;
+  // Loops entered the pose graph on this scan, which moved the poses.
+  bool loop_closed = false;
   StageTimes times;
+};
+
+// What loop closure has done so far.
+struct LoopClosureCounts {
+  int place_candidates = 0;   // attempts on a candidate from place recognition
+  int radius_candidates = 0;  // ... from the radius search
+  int verified = 0;           // accepted by ICP's inliers
+  int rejected = 0;           // not accepted
+  int unconfirmed = 0;        // verified, but no second loop agreed with it in time
+  int closed = 0;             // entered the pose graph
+  int removed = 0;            // later removed from it, inconsistent with the rest
 };
 
 class LidarMapping {
@@ -42,10 +56,12 @@ class LidarMapping {
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
   const LocalMap& local_map() const { return local_map_; }
   const TransformFusion& fusion() const { return fusion_; }
-  int loops_closed() const { return loops_closed_; }
+  int loops_closed() const { return counts_.closed - counts_.removed; }
+  const LoopClosureCounts& loop_closure_counts() const { return counts_; }
   bool loop_closure_running() const { return loop_job_ || loop_optimization_; }
-  // Finishes the loop-closure attempt in progress at once (at the end of the input, where no scan
-  // is left to spread it over); returns it, if there was one.
+  // Finishes the loop closure in progress at once (at the end of the input, where no scan is left
+  // to spread it over): the attempt, and the pose graph if it closes loops; returns the attempt,
+  // if there was one.
   std::optional<LoopDetection> finish_loop_closure();
   // Every scan's pose, re-derived from its keyframe so that later keyframe corrections apply.
   std::vector<Eigen::Isometry3d> trajectory() const;
@@ -53,13 +69,16 @@ class LidarMapping {
  private:
   bool motion_is_plausible(const Eigen::Isometry3d& motion) const;
   bool needs_keyframe() const;
-  void add_keyframe(const FeatureSet& features, double stamp);
+  void add_keyframe(const FeatureSet& features, double stamp, bool degenerate);
   // A loop-closure attempt starts with a new keyframe that has a loop candidate, at most once a
   // second of data (LeGO-LOAM's rate) and one at a time; every scan then runs one bounded step of
   // it: the detection's, then, when accepted, the pose graph's. Returns the attempt on the scan
   // it finished.
   std::optional<LoopDetection> advance_loop_closure(double stamp, bool new_keyframe);
   void start_loop_closure(double stamp);
+  // A verified loop waits for a second that agrees; the pair goes to the pose graph.
+  void confirm(const LoopDetection& loop);
+  bool loops_agree(const LoopDetection& first, const LoopDetection& second) const;
   // Applies the finished optimisation: keyframes, the running pose and the local map move.
   void close_loop();
 
@@ -72,7 +91,12 @@ class LidarMapping {
   std::optional<LoopDetectionJob> loop_job_;
   std::optional<LoopOptimization> loop_optimization_;
   double last_loop_attempt_ = -1e18;
-  int loops_closed_ = 0;
+  double last_closure_ = -1e18;
+  double last_stamp_ = 0.0;
+  PlaceRecognition places_;
+  std::vector<LoopDetection> pending_;  // verified loops waiting for one that agrees
+  LoopClosureCounts counts_;
+  bool closed_on_this_scan_ = false;
   LocalMap local_map_;
   KeyframeMerger merger_;
   ScanToMapMatcher matcher_;
