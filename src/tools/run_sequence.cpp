@@ -59,8 +59,9 @@ class Outputs {
     degeneration_.open(path("degeneration.csv"));
     loops_.open(path("loops.csv"));
     if (!timing_ || !degeneration_ || !loops_) throw IoError(dir + ": cannot write outputs there");
-    loops_ << "frame,current_keyframe,matched_keyframe,source,status,inlier_ratio,inlier_mse,"
-              "fitness,closed\n";
+    loops_ << "frame,current_keyframe,matched_keyframe,current_frame,matched_frame,source,status,"
+              "inlier_ratio,inlier_mse,fitness,relative_x,relative_y,relative_z,relative_yaw_deg,"
+              "closed\n";
     timing_ << "frame";
     for (const auto& stage : kStages)
       timing_ << "," << stage;
@@ -72,16 +73,25 @@ class Outputs {
   std::string path(const std::string& name) const { return (fs::path(dir_) / name).string(); }
 
   // A loop-closure attempt that finished on a scan, or loops that entered the graph on it.
-  void add_loop(int frame, const std::optional<LoopDetection>& loop, bool closed) {
+  void add_loop(int frame, const std::optional<LoopDetection>& loop, bool closed,
+                const std::vector<Keyframe>& keyframes) {
     if (!loop && !closed) return;
     loops_ << frame << ",";
     if (loop) {
+      const auto frame_of = [&](int keyframe) {
+        return keyframe >= 0 ? std::to_string(keyframes.at(keyframe).frame) : std::string();
+      };
+      const Eigen::Isometry3d& relative = loop->relative_pose;
       loops_ << loop->current_index << "," << loop->matched_index << ","
+             << frame_of(loop->current_index) << "," << frame_of(loop->matched_index) << ","
              << (loop->source == CandidateSource::kPlace ? "place" : "radius") << ","
              << (loop->accepted() ? "verified" : to_string(loop->status)) << ","
-             << loop->inlier_ratio << "," << loop->inlier_mse << "," << loop->fitness;
+             << loop->inlier_ratio << "," << loop->inlier_mse << "," << loop->fitness << ","
+             << relative.translation().x() << "," << relative.translation().y() << ","
+             << relative.translation().z() << ","
+             << std::atan2(relative(1, 0), relative(0, 0)) * 180.0 / M_PI;
     } else {
-      loops_ << ",,,,,,";
+      loops_ << ",,,,,,,,,,,,,";
     }
     loops_ << "," << int(closed) << "\n";
   }
@@ -175,7 +185,7 @@ int run(const Options& options) {
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
       outputs.add(result, pipeline.filter_result());
-      outputs.add_loop(result.frame, result.loop, result.loop_closed);
+      outputs.add_loop(result.frame, result.loop, result.loop_closed, pipeline.keyframes());
       progress.update(++frames);
     }
   } catch (const std::exception& e) {

@@ -56,9 +56,10 @@ Cloud KeyframeMerger::within_radius(const Cloud& cloud) const {
   return near;
 }
 
-// Whether an older merged keyframe lies within two keyframe spacings of this one.
+// Whether an older merged keyframe lies within half a group's length of this one: its cloud then
+// covers this group's ground.
 bool KeyframeMerger::place_is_stored(const std::vector<Keyframe>& keyframes, int anchor) const {
-  const double reach = 2.0 * params_.keyframe_distance;
+  const double reach = 0.5 * params_.keyframe_merge_group * params_.keyframe_distance;
   const Eigen::Vector3d position = keyframes[anchor].pose.translation();
   for (int older : anchors_) {
     if ((keyframes[older].pose.translation() - position).norm() <= reach) return true;

@@ -88,7 +88,8 @@ bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vecto
   constexpr int kReplacedPerUpdate = 2;
   if (!follow(replacement_, keyframes, chosen, kReplacedPerUpdate, &changed)) return false;
   std::swap(active_, replacement_);
-  replacement_.clear();
+  // The old placement's memory goes back: a second placement exists only while placing again.
+  replacement_ = Placement(params_);
   replacing_ = false;
   to_placement_ = Eigen::Isometry3d::Identity();
   return true;
@@ -97,7 +98,10 @@ bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vecto
 void LocalMap::keyframes_moved(const Eigen::Isometry3d& correction) {
   if (active_.placed.empty()) return;  // nothing placed with the old poses
   to_placement_ = to_placement_ * correction.inverse();
-  replacement_.clear();
+  replacement_ = Placement(params_);
+  // Room for what the active placement holds: growing a table re-inserts all it holds at once.
+  replacement_.corners.reserve(active_.corners.size());
+  replacement_.surfaces.reserve(active_.surfaces.size());
   replacing_ = true;
 }
 
