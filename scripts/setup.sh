@@ -15,6 +15,7 @@ PACKAGES=(
   libnav-msgs-dev libvisualization-msgs-dev libros-rosgraph-msgs-dev
   libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev librosbag-dev python3-rosbag
   python3-rostest librostest-dev python3-roslaunch python3-catkin-pkg libnodelet-dev
+  pluginlib-dev libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs
   libpcl-dev libpcl-conversions-dev libpcl-ros-dev libeigen3-dev libceres-dev libyaml-cpp-dev
   libcli11-dev nlohmann-json3-dev libembree-dev libgtest-dev googletest libbenchmark-dev
   python3-numpy python3-matplotlib

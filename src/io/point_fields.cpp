@@ -87,27 +87,59 @@ const FieldDescription* find_field(const PackedPoints& packed,
   return nullptr;
 }
 
+// A ring value that does not fit the core's int32 is no laser index.
+int32_t ring_value(double value) {
+  const bool fits =
+      value >= std::numeric_limits<int32_t>::min() && value <= std::numeric_limits<int32_t>::max();
+  return fits ? static_cast<int32_t>(value) : -1;
+}
+
+[[noreturn]] void fail_missing_coordinate(const PackedPoints& packed, const char* name,
+                                          const std::string& source) {
+  std::string names;
+  for (const auto& field : packed.fields)
+    names += (names.empty() ? "" : " ") + field.name;
+  throw IoError(source + ": missing field " + name +
+                "; fields present: " + (names.empty() ? "none" : names));
+}
+
+// The bytes from one row to the next; checks that the rows fit the data.
+std::size_t checked_row_step(const PackedPoints& packed, const std::string& source) {
+  const std::size_t row_bytes = std::size_t{packed.width} * packed.point_step;
+  const std::size_t row_step = packed.row_step ? packed.row_step : row_bytes;
+  if (row_step < row_bytes) {
+    throw IoError(source + ": row_step " + std::to_string(row_step) + " is less than width " +
+                  std::to_string(packed.width) + " x point_step " +
+                  std::to_string(packed.point_step) + " bytes");
+  }
+  std::size_t rows_before_last = 0;
+  const bool fits =
+      row_bytes <= packed.data_size &&
+      !__builtin_mul_overflow(std::size_t{packed.height - 1}, row_step, &rows_before_last) &&
+      rows_before_last <= packed.data_size - row_bytes;
+  if (!fits) {
+    const std::string layout =
+        row_step == row_bytes
+            ? std::to_string(std::size_t{packed.width} * packed.height) + " points x " +
+                  std::to_string(packed.point_step)
+            : std::to_string(packed.height) + " rows x row_step " + std::to_string(row_step);
+    throw IoError(source + ": data holds " + std::to_string(packed.data_size) +
+                  " bytes, expected " + layout + " bytes");
+  }
+  return row_step;
+}
+
 }  // namespace
 
 Scan decode_points(const PackedPoints& packed, const std::string& source) {
   const FieldDescription* x = find_field(packed, {"x"}, source);
   const FieldDescription* y = find_field(packed, {"y"}, source);
   const FieldDescription* z = find_field(packed, {"z"}, source);
-  if (!x || !y || !z) {
-    std::string names;
-    for (const auto& field : packed.fields)
-      names += (names.empty() ? "" : " ") + field.name;
-    throw IoError(source + ": missing field " +
-                  std::string(!x   ? "x"
-                              : !y ? "y"
-                                   : "z") +
-                  "; fields present: " + (names.empty() ? "none" : names));
-  }
-  if (packed.points > 0 && packed.data_size < packed.points * packed.point_step) {
-    throw IoError(source + ": data holds " + std::to_string(packed.data_size) +
-                  " bytes, expected " + std::to_string(packed.points) + " points x " +
-                  std::to_string(packed.point_step) + " bytes");
-  }
+  if (!x) fail_missing_coordinate(packed, "x", source);
+  if (!y) fail_missing_coordinate(packed, "y", source);
+  if (!z) fail_missing_coordinate(packed, "z", source);
+  const bool empty = packed.width == 0 || packed.height == 0;
+  const std::size_t row_step = empty ? 0 : checked_row_step(packed, source);
   const FieldDescription* intensity = find_field(packed, {"intensity", "reflectance", "i"}, source);
   const FieldDescription* ring = find_field(packed, {"ring", "channel"}, source);
   const FieldDescription* time =
@@ -121,10 +153,12 @@ Scan decode_points(const PackedPoints& packed, const std::string& source) {
   Scan scan;
   scan.has_ring = ring != nullptr;
   scan.has_time = time != nullptr;
-  scan.points.resize(packed.points);
+  if (empty) return scan;
+  scan.points.resize(std::size_t{packed.width} * packed.height);
   const bool swap = packed.big_endian;
-  for (std::size_t i = 0; i < packed.points; ++i) {
-    const uint8_t* record = packed.data + i * packed.point_step;
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    const uint8_t* record =
+        packed.data + (i / packed.width) * row_step + (i % packed.width) * packed.point_step;
     ScanPoint& p = scan.points[i];
     p.x = static_cast<float>(read_value(record + x->offset, x->datatype, swap));
     p.y = static_cast<float>(read_value(record + y->offset, y->datatype, swap));
@@ -133,8 +167,7 @@ Scan decode_points(const PackedPoints& packed, const std::string& source) {
       p.intensity =
           static_cast<float>(read_value(record + intensity->offset, intensity->datatype, swap));
     }
-    if (ring)
-      p.ring = static_cast<int32_t>(read_value(record + ring->offset, ring->datatype, swap));
+    if (ring) p.ring = ring_value(read_value(record + ring->offset, ring->datatype, swap));
     if (time) {
       p.time =
           static_cast<float>(read_value(record + time->offset, time->datatype, swap) * time_scale);

@@ -24,20 +24,32 @@ std::string where(const std::string& path, int line_number) {
   return path + ":" + std::to_string(line_number);
 }
 
-// Calls `handle(line_number, text)` for every line that is not blank (nor a '#' comment when
-// `comments` is set). Line numbers start at 1.
-void for_each_line(const std::string& path, bool comments,
+// Calls `handle(line_number, text)` for every line of `input` that is not blank (nor a '#'
+// comment when `comments` is set). Line numbers start at 1.
+void for_each_line(std::istream& input, const std::string& source, bool comments,
                    const std::function<void(int, const std::string&)>& handle) {
-  std::ifstream file(path);
-  if (!file) throw IoError(path + ": cannot open");
   std::string text;
-  for (int line_number = 1; std::getline(file, text); ++line_number) {
+  for (int line_number = 1; std::getline(input, text); ++line_number) {
     const std::size_t first = text.find_first_not_of(" \t\r");
     if (first == std::string::npos) continue;
     if (comments && text[first] == '#') continue;
     handle(line_number, text);
   }
-  if (file.bad()) throw IoError(path + ": read failed");
+  if (input.bad()) throw IoError(source + ": read failed");
+}
+
+// `parse` on the file at `path`, or on `text` below: one parser for files and memory.
+template <typename Parse>
+auto parse_file(const std::string& path, Parse parse) {
+  std::ifstream file(path);
+  if (!file) throw IoError(path + ": cannot open");
+  return parse(file, path);
+}
+
+template <typename Parse>
+auto parse_text(const std::string& text, const std::string& source, Parse parse) {
+  std::istringstream input(text);
+  return parse(input, source);
 }
 
 std::vector<double> parse_numbers(const std::string& text, const std::string& place) {
@@ -106,11 +118,9 @@ void write_lines(const std::string& path, const std::vector<std::vector<double>>
   if (!file) throw IoError(path + ": write failed");
 }
 
-}  // namespace
-
-std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path) {
+std::vector<Eigen::Isometry3d> kitti_poses_from(std::istream& input, const std::string& path) {
   std::vector<Eigen::Isometry3d> poses;
-  for_each_line(path, false, [&](int line_number, const std::string& text) {
+  for_each_line(input, path, false, [&](int line_number, const std::string& text) {
     const std::string place = where(path, line_number);
     const std::vector<double> numbers = parse_numbers(text, place);
     const std::string hint =
@@ -120,6 +130,63 @@ std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path) {
   });
   return poses;
 }
+
+StampedPoses tum_poses_from(std::istream& input, const std::string& path) {
+  StampedPoses stamped;
+  for_each_line(input, path, true, [&](int line_number, const std::string& text) {
+    const std::string place = where(path, line_number);
+    const std::vector<double> numbers = parse_numbers(text, place);
+    expect_count(numbers, 8, place, " (timestamp tx ty tz qx qy qz qw)");
+    Eigen::Quaterniond rotation(numbers[7], numbers[4], numbers[5], numbers[6]);
+    // Stable: the plain norm of a quaternion like (1e200, 0, 0, 0) overflows, and dividing by
+    // it gives the zero quaternion, whose rotation matrix is the identity.
+    if (rotation.coeffs().stableNorm() < 1e-9) fail(place, "quaternion (qx qy qz qw) is zero");
+    rotation.coeffs().stableNormalize();
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = rotation.toRotationMatrix();
+    pose.translation() << numbers[1], numbers[2], numbers[3];
+    stamped.times.push_back(numbers[0]);
+    stamped.poses.push_back(pose);
+  });
+  return stamped;
+}
+
+Eigen::Isometry3d kitti_calib_tr_from(std::istream& input, const std::string& path) {
+  Eigen::Isometry3d tr = Eigen::Isometry3d::Identity();
+  int tr_line = 0;
+  for_each_line(input, path, false, [&](int line_number, const std::string& text) {
+    std::istringstream tokens(text);
+    std::string key;
+    tokens >> key;
+    if (key != "Tr:") return;
+    const std::string place = where(path, line_number);
+    if (tr_line)
+      fail(place, "second 'Tr:' line (the first is line " + std::to_string(tr_line) + ")");
+    tr_line = line_number;
+    const std::vector<double> numbers = parse_numbers(text.substr(text.find("Tr:") + 3), place);
+    expect_count(numbers, 12, place, " after 'Tr:'");
+    tr = pose_from_row_major(numbers.data(), place);
+  });
+  if (!tr_line) {
+    throw IoError(path + ": no 'Tr:' line (12 numbers, the velodyne-to-camera transform)");
+  }
+  return tr;
+}
+
+std::vector<double> kitti_times_from(std::istream& input, const std::string& path) {
+  std::vector<double> times;
+  for_each_line(input, path, false, [&](int line_number, const std::string& text) {
+    const std::string place = where(path, line_number);
+    const std::vector<double> numbers = parse_numbers(text, place);
+    if (numbers.size() != 1) {
+      fail(place, "expected 1 number (a timestamp), found " + std::to_string(numbers.size()));
+    }
+    times.push_back(numbers[0]);
+  });
+  return times;
+}
+
+}  // namespace
 
 void write_kitti_poses(const std::string& path, const std::vector<Eigen::Isometry3d>& poses) {
   std::vector<std::vector<double>> rows;
@@ -131,23 +198,6 @@ void write_kitti_poses(const std::string& path, const std::vector<Eigen::Isometr
     }
   }
   write_lines(path, rows);
-}
-
-StampedPoses read_tum_poses(const std::string& path) {
-  StampedPoses stamped;
-  for_each_line(path, true, [&](int line_number, const std::string& text) {
-    const std::string place = where(path, line_number);
-    const std::vector<double> numbers = parse_numbers(text, place);
-    expect_count(numbers, 8, place, " (timestamp tx ty tz qx qy qz qw)");
-    Eigen::Quaterniond rotation(numbers[7], numbers[4], numbers[5], numbers[6]);
-    if (rotation.norm() < 1e-9) fail(place, "quaternion (qx qy qz qw) is zero");
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = rotation.normalized().toRotationMatrix();
-    pose.translation() << numbers[1], numbers[2], numbers[3];
-    stamped.times.push_back(numbers[0]);
-    stamped.poses.push_back(pose);
-  });
-  return stamped;
 }
 
 void write_tum_poses(const std::string& path, const std::vector<double>& times,
@@ -167,39 +217,37 @@ void write_tum_poses(const std::string& path, const std::vector<double>& times,
   write_lines(path, rows);
 }
 
+std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path) {
+  return parse_file(path, kitti_poses_from);
+}
+
+std::vector<Eigen::Isometry3d> parse_kitti_poses(const std::string& text,
+                                                 const std::string& source) {
+  return parse_text(text, source, kitti_poses_from);
+}
+
+StampedPoses read_tum_poses(const std::string& path) {
+  return parse_file(path, tum_poses_from);
+}
+
+StampedPoses parse_tum_poses(const std::string& text, const std::string& source) {
+  return parse_text(text, source, tum_poses_from);
+}
+
 Eigen::Isometry3d read_kitti_calib_tr(const std::string& path) {
-  Eigen::Isometry3d tr = Eigen::Isometry3d::Identity();
-  int tr_line = 0;
-  for_each_line(path, false, [&](int line_number, const std::string& text) {
-    std::istringstream tokens(text);
-    std::string key;
-    tokens >> key;
-    if (key != "Tr:") return;
-    const std::string place = where(path, line_number);
-    if (tr_line)
-      fail(place, "second 'Tr:' line (the first is line " + std::to_string(tr_line) + ")");
-    tr_line = line_number;
-    const std::vector<double> numbers = parse_numbers(text.substr(text.find("Tr:") + 3), place);
-    expect_count(numbers, 12, place, " after 'Tr:'");
-    tr = pose_from_row_major(numbers.data(), place);
-  });
-  if (!tr_line) {
-    throw IoError(path + ": no 'Tr:' line (12 numbers, the velodyne-to-camera transform)");
-  }
-  return tr;
+  return parse_file(path, kitti_calib_tr_from);
+}
+
+Eigen::Isometry3d parse_kitti_calib_tr(const std::string& text, const std::string& source) {
+  return parse_text(text, source, kitti_calib_tr_from);
 }
 
 std::vector<double> read_kitti_times(const std::string& path) {
-  std::vector<double> times;
-  for_each_line(path, false, [&](int line_number, const std::string& text) {
-    const std::string place = where(path, line_number);
-    const std::vector<double> numbers = parse_numbers(text, place);
-    if (numbers.size() != 1) {
-      fail(place, "expected 1 number (a timestamp), found " + std::to_string(numbers.size()));
-    }
-    times.push_back(numbers[0]);
-  });
-  return times;
+  return parse_file(path, kitti_times_from);
+}
+
+std::vector<double> parse_kitti_times(const std::string& text, const std::string& source) {
+  return parse_text(text, source, kitti_times_from);
 }
 
 }  // namespace adaptive_lego_loam

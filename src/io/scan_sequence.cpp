@@ -15,9 +15,10 @@ FileSequence::FileSequence(std::vector<std::string> files, std::vector<double> s
 
 std::optional<Scan> FileSequence::next() {
   if (position_ >= files_.size()) return std::nullopt;
-  Scan scan = read_scan_file(files_[position_]);
-  scan.stamp = position_ < stamps_.size() ? stamps_[position_] : 0.1 * position_;
-  ++position_;
+  // Moved on first: a scan that cannot be read is skipped when the caller goes on.
+  const std::size_t index = position_++;
+  Scan scan = read_scan_file(files_[index]);
+  scan.stamp = index < stamps_.size() ? stamps_[index] : 0.1 * index;
   return scan;
 }
 

@@ -1,27 +1,18 @@
-// map_optimization: scan-to-map matching against the local map of keyframes (LeGO-LOAM's
-// mapOptimization) on feature_association's features and odometry. Publishes the mapped pose,
-// the map -> odom correction as TF, the keyframe positions, the path and the local map.
+#include "map_optimization.h"
 
-#include <adaptive_lego_loam/DegenerationState.h>
-#include <nav_msgs/Odometry.h>
 #include <nav_msgs/Path.h>
-#include <ros/ros.h>
-#include <sensor_msgs/PointCloud2.h>
-#include <tf2_ros/transform_broadcaster.h>
 
-#include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
+#include <sstream>
+
+#include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/map_files.h"
 #include "adaptive_lego_loam/ros/degeneration_conversions.h"
 #include "adaptive_lego_loam/ros/feature_conversions.h"
-#include "adaptive_lego_loam/ros/node_config.h"
-#include "adaptive_lego_loam/ros/node_logging.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
-#include "adaptive_lego_loam/ros/stamp_matcher.h"
+#include "adaptive_lego_loam/ros/shared_publish.h"
 
-using namespace adaptive_lego_loam;
-
+namespace adaptive_lego_loam::nodes {
 namespace {
-
-enum Slot : std::size_t { kCorners, kSurfaces, kOutliers, kOdometry, kDegeneration };
 
 std::vector<std::string> slot_names(bool with_degeneration) {
   std::vector<std::string> names = {"laser_cloud_corner_last", "laser_cloud_surf_last",
@@ -30,138 +21,282 @@ std::vector<std::string> slot_names(bool with_degeneration) {
   return names;
 }
 
-class MapOptimization {
- public:
-  MapOptimization(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config)
-      : params_(config.mapping),
-        mapping_(config),
-        uses_prior_(config.mapping.weak_direction_prior > 0.0),
-        frames_(ros_bridge::load_frame_names(private_nh)),
-        pairing_("map_optimization", slot_names(uses_prior_),
-                 private_nh.param("max_pending_scans", 10),
-                 private_nh.param("warning_period", 5.0)),
-        surround_throttle_(private_nh.param("surround_period", 1.0)),
-        warn_("map_optimization", private_nh.param("warning_period", 5.0)),
-        summary_("map_optimization", private_nh.param("summary_period", 10.0)) {
-    const int queue = private_nh.param("queue_size", 5);
-    mapped_pub_ = nh.advertise<nav_msgs::Odometry>("aft_mapped_to_init", queue);
-    surround_pub_ = nh.advertise<sensor_msgs::PointCloud2>("laser_cloud_surround", 1);
-    keyframe_pub_ = nh.advertise<sensor_msgs::PointCloud2>("key_pose_origin", 1);
-    path_pub_ = nh.advertise<nav_msgs::Path>("path", 1);
-    subscriptions_.push_back(
-        nh.subscribe("laser_cloud_corner_last", queue, &MapOptimization::on_corners, this));
-    subscriptions_.push_back(
-        nh.subscribe("laser_cloud_surf_last", queue, &MapOptimization::on_surfaces, this));
-    subscriptions_.push_back(
-        nh.subscribe("outlier_cloud_last", queue, &MapOptimization::on_outliers, this));
-    subscriptions_.push_back(
-        nh.subscribe("laser_odom_to_init", queue, &MapOptimization::on_odometry, this));
-    if (uses_prior_) {
-      // image_projection is a whole stage ahead: a larger queue keeps its messages until the
-      // features of the same scan arrive.
-      subscriptions_.push_back(
-          nh.subscribe("degeneration", 4 * queue, &MapOptimization::on_degeneration, this));
-    }
+// ~initial_pose "x y z yaw_deg" (empty: the map's origin).
+Eigen::Isometry3d initial_pose_param(const ros::NodeHandle& private_nh) {
+  const std::string text = private_nh.param<std::string>("initial_pose", "");
+  if (text.empty()) return Eigen::Isometry3d::Identity();
+  std::istringstream fields(text);
+  double x = 0, y = 0, z = 0, yaw_deg = 0;
+  fields >> x >> y >> z >> yaw_deg;
+  if (!fields || !(fields >> std::ws).eof()) {
+    throw ConfigError(private_nh.resolveName("initial_pose") + ": \"" + text +
+                      "\": expected \"x y z yaw_deg\"");
   }
-
- private:
-  void on_corners(const sensor_msgs::PointCloud2ConstPtr& msg) { add(kCorners, msg->header, msg); }
-  void on_surfaces(const sensor_msgs::PointCloud2ConstPtr& msg) {
-    add(kSurfaces, msg->header, msg);
-  }
-  void on_outliers(const sensor_msgs::PointCloud2ConstPtr& msg) {
-    add(kOutliers, msg->header, msg);
-  }
-  void on_odometry(const nav_msgs::OdometryConstPtr& msg) { add(kOdometry, msg->header, msg); }
-  void on_degeneration(const DegenerationStateConstPtr& msg) {
-    add(kDegeneration, msg->header, msg);
-  }
-
-  void add(Slot slot, const std_msgs::Header& header, ros_bridge::StampMatcher::Message msg) {
-    if (const auto group = pairing_.add(slot, header.stamp, std::move(msg))) process(*group);
-  }
-
-  void process(const ros_bridge::StampMatcher::Group& group) {
-    const auto odometry = group.get<nav_msgs::Odometry>(kOdometry);
-    try {
-      const FeatureSet features = ros_bridge::mapping_features_from_ros(
-          *group.get<sensor_msgs::PointCloud2>(kCorners),
-          *group.get<sensor_msgs::PointCloud2>(kSurfaces),
-          *group.get<sensor_msgs::PointCloud2>(kOutliers),
-          {topic(kCorners), topic(kSurfaces), topic(kOutliers)});
-      const Eigen::Isometry3d odometry_pose =
-          ros_bridge::pose_from_ros(odometry->pose.pose, topic(kOdometry));
-      std::optional<WeakDirectionPrior> prior;
-      if (uses_prior_) {
-        prior = ros_bridge::weak_direction_prior_from_ros(
-            params_, *group.get<DegenerationState>(kDegeneration));
-      }
-      mapping_.process(features, odometry_pose, group.stamp.toSec(), prior, out_);
-      sensor_frame_ = odometry->child_frame_id.empty() ? frames_.sensor : odometry->child_frame_id;
-      stamps_.push_back(group.stamp);
-      publish(group.stamp);
-    } catch (const std::exception& e) {
-      warn_(std::string("scan dropped: ") + e.what());
-      return;
-    }
-    ROS_DEBUG("map_optimization: scan at %.3f: %s%s", group.stamp.toSec(),
-              ros_bridge::format_stage_times(out_.times).c_str(),
-              out_.keyframe ? " (keyframe)" : "");
-    if (out_.loop) log_loop(*out_.loop);
-    summary_.add(out_.times);
-    if (const auto line = summary_.report()) ROS_INFO("%s", line->c_str());
-  }
-
-  std::string topic(Slot slot) const { return subscriptions_[slot].getTopic(); }
-
-  // An attempt is reported on the scan it finished, some scans after its keyframe.
-  static void log_loop(const LoopDetection& loop) {
-    if (loop.accepted()) {
-      ROS_INFO("map_optimization: loop closed: keyframe %d to %d (ICP fitness %.3f m^2)",
-               loop.current_index, loop.matched_index, loop.fitness);
-    } else {
-      ROS_DEBUG("map_optimization: no loop at keyframe %d: %s (fitness %.3f m^2)",
-                loop.current_index, to_string(loop.status), loop.fitness);
-    }
-  }
-
-  void publish(const ros::Time& stamp) {
-    std_msgs::Header map_header;
-    map_header.stamp = stamp;
-    map_header.frame_id = frames_.map;
-    mapped_pub_.publish(ros_bridge::odometry_to_ros(out_.pose, map_header, sensor_frame_));
-    tf_broadcaster_.sendTransform(
-        ros_bridge::transform_to_ros(mapping_.fusion().correction(), map_header, frames_.odom));
-    if (out_.keyframe && keyframe_pub_.getNumSubscribers() > 0) {
-      keyframe_pub_.publish(
-          ros_bridge::keyframe_positions_to_ros(mapping_.keyframes(), map_header));
-    }
-    if (path_pub_.getNumSubscribers() > 0) {
-      path_pub_.publish(ros_bridge::path_to_ros(mapping_.trajectory(), stamps_, frames_.map));
-    }
-    if (surround_pub_.getNumSubscribers() > 0 && surround_throttle_.ready()) {
-      surround_pub_.publish(ros_bridge::local_map_to_ros(mapping_.local_map(), map_header));
-    }
-  }
-
-  MappingParams params_;
-  LidarMapping mapping_;
-  MappingOutput out_;
-  bool uses_prior_;
-  ros_bridge::FrameNames frames_;
-  std::string sensor_frame_;
-  std::vector<ros::Time> stamps_;  // of every mapped scan, for the path
-  ros_bridge::ScanPairing pairing_;
-  ros_bridge::Throttle surround_throttle_;  // the local map is large: at most once a period
-  ros_bridge::ThrottledWarning warn_;
-  ros_bridge::StageSummary summary_;
-  std::vector<ros::Subscriber> subscriptions_;  // in Slot order
-  ros::Publisher mapped_pub_, surround_pub_, keyframe_pub_, path_pub_;
-  tf2_ros::TransformBroadcaster tf_broadcaster_;
-};
+  return initial_pose(x, y, z, yaw_deg);
+}
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  return ros_bridge::run_node<MapOptimization>(argc, argv, "map_optimization");
+using ros_bridge::publish_shared;
+
+MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh,
+                                         const Config& config)
+    : config_(config),
+      map_folder_(private_nh.param<std::string>("map", "")),
+      initial_pose_(initial_pose_param(private_nh)),
+      save_on_exit_(private_nh.param<std::string>("save_map_on_exit", "")),
+      uses_prior_(config.mapping.weak_direction_prior > 0.0),
+      frames_(ros_bridge::load_frame_names(private_nh)),
+      pairing_("map_optimization", slot_names(uses_prior_),
+               private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
+      surround_throttle_(private_nh.param("surround_period", 1.0)),
+      path_throttle_(private_nh.param("path_period", 1.0)),
+      warn_("map_optimization", private_nh.param("warning_period", 5.0)),
+      summary_("map_optimization", private_nh.param("summary_period", 10.0)),
+      diagnostics_(nh, private_nh, "map_optimization", config.sensor.name,
+                   config.sensor.scan_period,
+                   [this](ros_bridge::HealthStatus& status) { add_diagnostics(status); }) {
+  if (!map_folder_.empty()) {
+    SavedMap map = load_map(map_folder_);
+    if (!map.description.sensor.empty() && map.description.sensor != config.sensor.name) {
+      ROS_WARN("map_optimization: the map %s was made with sensor %s, this config is for %s",
+               map_folder_.c_str(), map.description.sensor.c_str(), config.sensor.name.c_str());
+    }
+    map_keyframes_ = std::move(map.keyframes);
+    ROS_INFO("map_optimization: localizing on %s (%zu keyframes); waiting for the first scan",
+             map_folder_.c_str(), map_keyframes_.size());
+  }
+  mapping_ = make_mapping();
+  const int queue = private_nh.param("queue_size", 5);
+  mapped_pub_ = nh.advertise<nav_msgs::Odometry>("aft_mapped_to_init", queue);
+  surround_pub_ = nh.advertise<sensor_msgs::PointCloud2>("laser_cloud_surround", 1);
+  keyframe_pub_ = nh.advertise<sensor_msgs::PointCloud2>("key_pose_origin", 1);
+  path_pub_ = nh.advertise<nav_msgs::Path>("path", 1);
+  subscriptions_.push_back(
+      nh.subscribe("laser_cloud_corner_last", queue, &MapOptimizationNode::on_corners, this));
+  subscriptions_.push_back(
+      nh.subscribe("laser_cloud_surf_last", queue, &MapOptimizationNode::on_surfaces, this));
+  subscriptions_.push_back(
+      nh.subscribe("outlier_cloud_last", queue, &MapOptimizationNode::on_outliers, this));
+  subscriptions_.push_back(
+      nh.subscribe("laser_odom_to_init", queue, &MapOptimizationNode::on_odometry, this));
+  if (uses_prior_) {
+    // image_projection is a whole stage ahead: a larger queue keeps its messages until the
+    // features of the same scan arrive.
+    subscriptions_.push_back(
+        nh.subscribe("degeneration", 4 * queue, &MapOptimizationNode::on_degeneration, this));
+  }
+  if (mapping_->localizing()) {
+    initial_pose_sub_ = nh.subscribe("initialpose", 1, &MapOptimizationNode::on_initial_pose, this);
+  }
+  ros::AdvertiseServiceOptions service = ros::AdvertiseServiceOptions::create<SaveMap>(
+      "save_map",
+      [this](SaveMap::Request& request, SaveMap::Response& response) {
+        return on_save_map(request, response);
+      },
+      ros::VoidPtr(), &service_queue_);
+  save_service_ = private_nh.advertiseService(service);
+  service_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &service_queue_);
+  service_spinner_->start();
 }
+
+MapOptimizationNode::~MapOptimizationNode() {
+  service_spinner_->stop();
+  if (save_on_exit_.empty()) return;
+  try {
+    ROS_INFO("map_optimization: %s", save(save_on_exit_, 0.0).c_str());
+  } catch (const std::exception& e) {
+    ROS_ERROR("map_optimization: the map was not saved on exit: %s", e.what());
+  }
+}
+
+std::unique_ptr<LidarMapping> MapOptimizationNode::make_mapping() const {
+  if (map_folder_.empty()) return std::make_unique<LidarMapping>(config_);
+  return std::make_unique<LidarMapping>(config_, map_keyframes_, initial_pose_);
+}
+
+void MapOptimizationNode::on_initial_pose(
+    const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg) {
+  try {
+    const Eigen::Isometry3d pose = ros_bridge::pose_from_ros(msg->pose.pose, "initialpose");
+    std::lock_guard<std::mutex> lock(mapping_mutex_);
+    mapping_->relocalize(pose);
+    ROS_INFO("map_optimization: new initial pose (%.2f, %.2f, %.2f): aligning to the map",
+             pose.translation().x(), pose.translation().y(), pose.translation().z());
+  } catch (const std::exception& e) {
+    warn_(std::string("initial pose ignored: ") + e.what());
+  }
+}
+
+std::string MapOptimizationNode::save(const std::string& folder, double voxel_size) {
+  std::vector<Keyframe> keyframes;
+  MapDescription description{config_.source, config_.sensor.name, "map_optimization", 0};
+  {
+    std::lock_guard<std::mutex> lock(mapping_mutex_);
+    if (mapping_->localizing()) {
+      throw IoError("localizing on " + map_folder_ + ": the map is the loaded one, not saved");
+    }
+    keyframes = mapping_->keyframes();  // clouds shared, not copied
+    description.frames = static_cast<int>(stamps_.size());
+  }
+  save_map(folder, keyframes, description, config_, voxel_size);
+  return "map of " + std::to_string(keyframes.size()) + " keyframes saved in " + folder;
+}
+
+bool MapOptimizationNode::on_save_map(SaveMap::Request& request, SaveMap::Response& response) {
+  try {
+    if (request.folder.empty()) throw IoError("save_map: no folder given");
+    response.message = save(request.folder, request.voxel_size);
+    response.success = true;
+    std::lock_guard<std::mutex> lock(mapping_mutex_);
+    response.keyframes = static_cast<int>(mapping_->keyframes().size());
+    ROS_INFO("map_optimization: %s", response.message.c_str());
+  } catch (const std::exception& e) {
+    response.success = false;
+    response.message = e.what();
+    ROS_ERROR("map_optimization: save_map failed: %s", e.what());
+  }
+  return true;  // the outcome is in the response
+}
+
+void MapOptimizationNode::add(Slot slot, const std_msgs::Header& header,
+                              ros_bridge::StampMatcher::Message msg) {
+  const auto group = pairing_.add(slot, header.stamp, std::move(msg));
+  for (; pairing_dropped_ < pairing_.dropped(); ++pairing_dropped_)
+    diagnostics_.dropped("incomplete group");
+  if (group) process(*group);
+}
+
+void MapOptimizationNode::process(const ros_bridge::StampMatcher::Group& group) {
+  const StampStep step = diagnostics_.received(group.stamp);
+  if (step == StampStep::kDuplicate) {
+    diagnostics_.dropped("duplicate stamp");
+    warn_("scan dropped: a scan with the stamp of the last one");
+    return;
+  }
+  if (step == StampStep::kBackward) {
+    ROS_WARN("map_optimization: time went back to %.3f s (a bag played again?): %s",
+             group.stamp.toSec(),
+             map_folder_.empty() ? "the map starts over" : "localization starts over");
+    std::lock_guard<std::mutex> lock(mapping_mutex_);
+    mapping_ = make_mapping();
+    stamps_.clear();
+    last_stamp_.reset();
+  }
+  try {
+    map_scan(group);
+  } catch (const std::exception& e) {
+    diagnostics_.dropped("bad cloud");
+    warn_(std::string("scan dropped: ") + e.what());
+    return;
+  }
+  ROS_DEBUG("map_optimization: scan at %.3f: %s%s", group.stamp.toSec(),
+            ros_bridge::format_stage_times(out_.times).c_str(), out_.keyframe ? " (keyframe)" : "");
+  if (out_.loop) log_loop(*out_.loop);
+  if (out_.localization) log_localization(*out_.localization);
+  diagnostics_.processed(out_.times);
+  summary_.add(out_.times);
+  if (const auto line = summary_.report()) ROS_INFO("%s", line->c_str());
+}
+
+void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group) {
+  const auto odometry = group.get<nav_msgs::Odometry>(kOdometry);
+  const FeatureSet features =
+      ros_bridge::mapping_features_from_ros(*group.get<sensor_msgs::PointCloud2>(kCorners),
+                                            *group.get<sensor_msgs::PointCloud2>(kSurfaces),
+                                            *group.get<sensor_msgs::PointCloud2>(kOutliers),
+                                            {topic(kCorners), topic(kSurfaces), topic(kOutliers)});
+  const Eigen::Isometry3d odometry_pose =
+      ros_bridge::pose_from_ros(odometry->pose.pose, topic(kOdometry));
+  std::optional<WeakDirectionPrior> prior;
+  if (uses_prior_) {
+    prior = ros_bridge::weak_direction_prior_from_ros(config_.mapping,
+                                                      *group.get<DegenerationState>(kDegeneration));
+  }
+  {
+    std::lock_guard<std::mutex> lock(mapping_mutex_);
+    mapping_->process(features, odometry_pose, group.stamp.toSec(), prior, out_);
+    sensor_frame_ = odometry->child_frame_id.empty() ? frames_.sensor : odometry->child_frame_id;
+    stamps_.push_back(group.stamp);
+    publish(group.stamp);
+  }
+  last_stamp_ = group.stamp;
+}
+
+// An attempt is reported on the scan it finished, some scans after its keyframe.
+void MapOptimizationNode::log_loop(const LoopDetection& loop) const {
+  if (loop.accepted()) {
+    ROS_INFO("map_optimization: loop verified: keyframe %d to %d (%s, %.1f %% inliers)",
+             loop.current_index, loop.matched_index, to_string(loop.source),
+             100.0 * loop.inlier_ratio);
+  } else {
+    ROS_DEBUG("map_optimization: no loop at keyframe %d: %s (%.1f %% inliers)", loop.current_index,
+              to_string(loop.status), 100.0 * loop.inlier_ratio);
+  }
+}
+
+void MapOptimizationNode::log_localization(const LocalizationStatus& status) {
+  if (status.state == LocalizationState::kLost) diagnostics_.dropped("localization lost");
+  if (last_state_ && *last_state_ == status.state) return;
+  last_state_ = status.state;
+  if (status.state == LocalizationState::kTracking) {
+    ROS_INFO("map_optimization: localized on the map (%.1f %% inliers)",
+             status.alignment ? 100.0 * status.alignment->inlier_ratio : 0.0);
+  } else if (status.state == LocalizationState::kLost) {
+    const std::string alignment =
+        status.alignment ? std::string(", alignment: ") + to_string(status.alignment->status) : "";
+    ROS_WARN(
+        "map_optimization: localization lost (%.0f %% of the features match the map%s); "
+        "following the odometry and trying again from there",
+        100.0 * status.match_ratio, alignment.c_str());
+  }
+}
+
+void MapOptimizationNode::publish(const ros::Time& stamp) {
+  std_msgs::Header map_header;
+  map_header.stamp = stamp;
+  map_header.frame_id = frames_.map;
+  nav_msgs::Odometry mapped = ros_bridge::odometry_to_ros(out_.pose, map_header, sensor_frame_);
+  // The mapped motion, without the map frame's jumps: feature_association's motion model.
+  if (out_.motion && last_stamp_ && stamp > *last_stamp_) {
+    mapped.twist.twist = ros_bridge::motion_to_twist(*out_.motion, (stamp - *last_stamp_).toSec());
+  }
+  publish_shared(mapped_pub_, std::move(mapped));
+  tf_broadcaster_.sendTransform(
+      ros_bridge::transform_to_ros(mapping_->fusion().correction(), map_header, frames_.odom));
+  if (out_.keyframe && keyframe_pub_.getNumSubscribers() > 0) {
+    publish_shared(keyframe_pub_,
+                   ros_bridge::keyframe_positions_to_ros(mapping_->keyframes(), map_header));
+  }
+  if (path_pub_.getNumSubscribers() > 0 && (out_.loop_closed || path_throttle_.ready())) {
+    publish_shared(path_pub_,
+                   ros_bridge::path_to_ros(mapping_->trajectory(), stamps_, frames_.map));
+  }
+  if (surround_pub_.getNumSubscribers() > 0 && surround_throttle_.ready()) {
+    publish_shared(surround_pub_, ros_bridge::local_map_to_ros(mapping_->local_map(), map_header));
+  }
+}
+
+void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) const {
+  std::lock_guard<std::mutex> lock(mapping_mutex_);
+  status.add("keyframes", std::to_string(mapping_->keyframes().size()));
+  if (mapping_->localizing()) {
+    status.add("map", map_folder_);
+    const std::string state = last_state_ ? to_string(*last_state_) : "waiting for a scan";
+    status.add("localization", state);
+    if (last_state_ == LocalizationState::kLost) {
+      status.raise(ros_bridge::HealthLevel::kError, "localization lost");
+    }
+    return;
+  }
+  const LoopClosureCounts& loops = mapping_->loop_closure_counts();
+  status.add("loops closed", std::to_string(mapping_->loops_closed()));
+  status.add("loop candidates (place / radius)", std::to_string(loops.place_candidates) + " / " +
+                                                     std::to_string(loops.radius_candidates));
+  status.add("loops verified", std::to_string(loops.verified));
+  status.add("loops rejected", std::to_string(loops.rejected));
+  status.add("loops unconfirmed", std::to_string(loops.unconfirmed));
+  status.add("loops removed", std::to_string(loops.removed));
+}
+
+}  // namespace adaptive_lego_loam::nodes

@@ -29,11 +29,13 @@ class BagSequence : public ScanSequence {
     // The iterator owns the instance it points at: read it before moving on.
     const rosbag::MessageInstance& message = *position_;
     const auto cloud = message.instantiate<sensor_msgs::PointCloud2>();
+    const std::string data_type = message.getDataType();
+    // Moved on first: a scan that cannot be read is skipped when the caller goes on.
+    ++position_;
     if (!cloud) {
-      throw IoError(path_ + ": topic " + topic_ + " holds " + message.getDataType() +
+      throw IoError(path_ + ": topic " + topic_ + " holds " + data_type +
                     ", expected sensor_msgs/PointCloud2");
     }
-    ++position_;
     return from_ros(*cloud, path_ + ":" + topic_);
   }
   int size() const override { return static_cast<int>(view_->size()); }

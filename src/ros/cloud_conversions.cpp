@@ -1,6 +1,6 @@
 #include "adaptive_lego_loam/ros/cloud_conversions.h"
 
-#include <sensor_msgs/point_cloud2_iterator.h>
+#include <cstring>
 
 #include "adaptive_lego_loam/io/point_fields.h"
 
@@ -12,42 +12,50 @@ Scan from_ros(const sensor_msgs::PointCloud2& msg, const std::string& source) {
   return scan;
 }
 
+namespace {
+
+sensor_msgs::PointField field(const std::string& name, uint32_t offset, uint8_t datatype) {
+  sensor_msgs::PointField f;
+  f.name = name;
+  f.offset = offset;
+  f.datatype = datatype;
+  f.count = 1;
+  return f;
+}
+
+}  // namespace
+
+// x y z intensity [time ring], every field at an offset that is a multiple of its size and the
+// point step a multiple of 4, so that readers may take the fields in place.
 sensor_msgs::PointCloud2 to_ros(const std::vector<ScanPoint>& points,
                                 const std_msgs::Header& header, bool with_ring_and_time) {
+  using sensor_msgs::PointField;
   sensor_msgs::PointCloud2 msg;
   msg.header = header;
-  sensor_msgs::PointCloud2Modifier modifier(msg);
+  msg.fields = {field("x", 0, PointField::FLOAT32), field("y", 4, PointField::FLOAT32),
+                field("z", 8, PointField::FLOAT32), field("intensity", 12, PointField::FLOAT32)};
+  msg.point_step = 16;
   if (with_ring_and_time) {
-    modifier.setPointCloud2Fields(
-        6, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z",
-        1, sensor_msgs::PointField::FLOAT32, "intensity", 1, sensor_msgs::PointField::FLOAT32,
-        "ring", 1, sensor_msgs::PointField::UINT16, "time", 1, sensor_msgs::PointField::FLOAT32);
-  } else {
-    modifier.setPointCloud2Fields(
-        4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z",
-        1, sensor_msgs::PointField::FLOAT32, "intensity", 1, sensor_msgs::PointField::FLOAT32);
+    msg.fields.push_back(field("time", 16, PointField::FLOAT32));
+    msg.fields.push_back(field("ring", 20, PointField::UINT16));
+    msg.point_step = 24;  // 2 bytes of padding
   }
-  modifier.resize(points.size());
   msg.height = 1;
   msg.width = static_cast<uint32_t>(points.size());
+  msg.row_step = msg.point_step * msg.width;
+  msg.is_bigendian = false;
   msg.is_dense = false;
-  sensor_msgs::PointCloud2Iterator<float> x(msg, "x"), y(msg, "y"), z(msg, "z");
-  sensor_msgs::PointCloud2Iterator<float> intensity(msg, "intensity");
+  msg.data.assign(std::size_t{msg.row_step}, 0);
+  uint8_t* out = msg.data.data();
   for (const ScanPoint& p : points) {
-    *x = p.x;
-    *y = p.y;
-    *z = p.z;
-    *intensity = p.intensity;
-    ++x, ++y, ++z, ++intensity;
-  }
-  if (with_ring_and_time) {
-    sensor_msgs::PointCloud2Iterator<uint16_t> ring(msg, "ring");
-    sensor_msgs::PointCloud2Iterator<float> time(msg, "time");
-    for (const ScanPoint& p : points) {
-      *ring = static_cast<uint16_t>(p.ring < 0 ? 0 : p.ring);
-      *time = p.time;
-      ++ring, ++time;
+    const float xyzi[4] = {p.x, p.y, p.z, p.intensity};
+    std::memcpy(out, xyzi, sizeof(xyzi));
+    if (with_ring_and_time) {
+      const uint16_t ring = static_cast<uint16_t>(p.ring < 0 ? 0 : p.ring);
+      std::memcpy(out + 16, &p.time, sizeof(float));
+      std::memcpy(out + 20, &ring, sizeof(ring));
     }
+    out += msg.point_step;
   }
   return msg;
 }

@@ -33,8 +33,7 @@ void ThrottledWarning::operator()(const std::string& what) {
   }
 }
 
-void StageSummary::add(const StageTimes& times, double now_s) {
-  if (!start_s_) start_s_ = now_s;
+void StageTotals::add(const StageTimes& times) {
   ++frames_;
   for (const auto& [stage, ms] : times.entries()) {
     auto it = total_ms_.begin();
@@ -49,36 +48,46 @@ void StageSummary::add(const StageTimes& times, double now_s) {
   all_ms_ += times.total();
 }
 
+void StageTotals::clear() {
+  frames_ = 0;
+  total_ms_.clear();
+  all_ms_ = 0.0;
+}
+
+void StageSummary::add(const StageTimes& times, double now_s) {
+  if (!start_s_) start_s_ = now_s;
+  totals_.add(times);
+}
+
 StageSummary::~StageSummary() {
   // A short run (a bag of a few scans) ends before the first period: say what it did.
   if (const auto line = report_remaining()) ROS_INFO("%s", line->c_str());
 }
 
 std::optional<std::string> StageSummary::report(double now_s) {
-  if (!start_s_ || frames_ == 0 || now_s - *start_s_ < period_s_) return std::nullopt;
+  if (!start_s_ || totals_.frames() == 0 || now_s - *start_s_ < period_s_) return std::nullopt;
   return line(now_s);
 }
 
 std::optional<std::string> StageSummary::report_remaining(double now_s) {
-  if (!start_s_ || frames_ == 0) return std::nullopt;
+  if (!start_s_ || totals_.frames() == 0) return std::nullopt;
   return line(now_s);
 }
 
 std::string StageSummary::line(double now_s) {
+  const int frames = totals_.frames();
   char number[64];
-  std::snprintf(number, sizeof(number), "%.1f", frames_ / std::max(now_s - *start_s_, 1e-9));
-  std::string line = label_ + ": " + number + " frames/s over " + std::to_string(frames_) +
+  std::snprintf(number, sizeof(number), "%.1f", frames / std::max(now_s - *start_s_, 1e-9));
+  std::string line = label_ + ": " + number + " frames/s over " + std::to_string(frames) +
                      " frames; ms per frame:";
-  for (const auto& [stage, ms] : total_ms_) {
-    std::snprintf(number, sizeof(number), " %.1f", ms / frames_);
+  for (const auto& [stage, ms] : totals_.totals_ms()) {
+    std::snprintf(number, sizeof(number), " %.1f", ms / frames);
     line += " " + stage + number + ",";
   }
-  std::snprintf(number, sizeof(number), " %.1f", all_ms_ / frames_);
+  std::snprintf(number, sizeof(number), " %.1f", totals_.all_ms() / frames);
   line += std::string(" total") + number;
   start_s_ = now_s;
-  frames_ = 0;
-  total_ms_.clear();
-  all_ms_ = 0.0;
+  totals_.clear();
   return line;
 }
 

@@ -33,6 +33,34 @@ Eigen::Isometry3d pose_from_ros(const geometry_msgs::Pose& pose, const std::stri
   return result;
 }
 
+geometry_msgs::Twist motion_to_twist(const Eigen::Isometry3d& motion, double dt) {
+  const Eigen::AngleAxisd rotation(motion.rotation());
+  const Eigen::Vector3d linear = motion.translation() / dt;
+  const Eigen::Vector3d angular = rotation.axis() * (rotation.angle() / dt);
+  geometry_msgs::Twist twist;
+  twist.linear.x = linear.x();
+  twist.linear.y = linear.y();
+  twist.linear.z = linear.z();
+  twist.angular.x = angular.x();
+  twist.angular.y = angular.y();
+  twist.angular.z = angular.z();
+  return twist;
+}
+
+Eigen::Isometry3d motion_from_twist(const geometry_msgs::Twist& twist, double dt,
+                                    const std::string& source) {
+  const Eigen::Vector3d linear(twist.linear.x, twist.linear.y, twist.linear.z);
+  const Eigen::Vector3d angular(twist.angular.x, twist.angular.y, twist.angular.z);
+  if (!linear.allFinite() || !angular.allFinite()) {
+    throw IoError(source + ": twist holds a non-finite number");
+  }
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  const double angle = angular.norm() * dt;
+  if (angle > 0.0) motion.linear() = Eigen::AngleAxisd(angle, angular.normalized()).matrix();
+  motion.translation() = linear * dt;
+  return motion;
+}
+
 geometry_msgs::TransformStamped transform_to_ros(const Eigen::Isometry3d& pose,
                                                  const std_msgs::Header& header,
                                                  const std::string& child_frame) {

@@ -36,6 +36,12 @@ StampMatcher::Dropped StampMatcher::partial(const ros::Time& stamp,
 std::optional<StampMatcher::Group> StampMatcher::add(std::size_t slot, const ros::Time& stamp,
                                                      Message message) {
   if (slot >= slot_names_.size()) throw std::out_of_range("StampMatcher: no such slot");
+  // Far older than the last group: time went back (a bag played again), not a late message.
+  if (last_completed_ && stamp + ros::Duration(kJumpBack) < *last_completed_) {
+    pending_.clear();
+    last_completed_.reset();
+    ++restarts_;
+  }
   if (last_completed_ && stamp <= *last_completed_) {
     std::vector<Message> alone(slot_names_.size());
     alone[slot] = message;
@@ -79,8 +85,10 @@ ScanPairing::ScanPairing(const std::string& node, std::vector<std::string> slot_
 std::optional<StampMatcher::Group> ScanPairing::add(std::size_t slot, const ros::Time& stamp,
                                                     StampMatcher::Message message) {
   std::optional<StampMatcher::Group> group = matcher_.add(slot, stamp, std::move(message));
-  for (const StampMatcher::Dropped& dropped : matcher_.take_dropped())
+  for (const StampMatcher::Dropped& dropped : matcher_.take_dropped()) {
     warning_(dropped.describe());
+    ++dropped_;
+  }
   return group;
 }
 

@@ -25,6 +25,12 @@ Eigen::Vector3d polyline_at(const std::vector<Eigen::Vector3d>& polyline,
   return polyline[hint] + f * (polyline[hint + 1] - polyline[hint]);
 }
 
+// The two cell indices in one key (shifted as unsigned: a negative index's shift is undefined).
+int64_t key_of(int64_t ix, int64_t iy) {
+  return static_cast<int64_t>((static_cast<uint64_t>(ix) << 32) ^
+                              (static_cast<uint64_t>(iy) & 0xFFFFFFFFull));
+}
+
 }  // namespace
 
 Path::Path(const std::vector<Eigen::Vector3d>& input, bool closed, double spacing)
@@ -70,9 +76,8 @@ int Path::segment_count() const {
 }
 
 int64_t Path::cell_key(const Eigen::Vector2d& xy) const {
-  const int64_t ix = static_cast<int64_t>(std::floor(xy.x() / cell_size_));
-  const int64_t iy = static_cast<int64_t>(std::floor(xy.y() / cell_size_));
-  return (ix << 32) ^ (iy & 0xFFFFFFFFll);
+  return key_of(static_cast<int64_t>(std::floor(xy.x() / cell_size_)),
+                static_cast<int64_t>(std::floor(xy.y() / cell_size_)));
 }
 
 Path::Frame Path::at(double s) const {
@@ -131,7 +136,7 @@ bool Path::nearest(const Eigen::Vector2d& xy, double max_distance, Nearest& out)
     for (int64_t ix = cx - ring; ix <= cx + ring; ++ix) {
       const bool edge_column = ix == cx - ring || ix == cx + ring;
       for (int64_t iy = cy - ring; iy <= cy + ring; iy += edge_column ? 1 : 2 * ring) {
-        const auto cell = segments_by_cell_.find((ix << 32) ^ (iy & 0xFFFFFFFFll));
+        const auto cell = segments_by_cell_.find(key_of(ix, iy));
         if (cell != segments_by_cell_.end()) {
           for (int segment : cell->second) {
             project_on_segment(segment, xy, candidate);

@@ -1,5 +1,7 @@
 // Runs the whole pipeline over a sequence (KITTI folder, PCD folder or bag) and writes the poses
-// (KITTI and TUM), per-frame stage times, the ambient filter's output and a summary.
+// (KITTI and TUM), per-frame stage times, the ambient filter's output and a summary; optionally
+// saves the map, or localizes on a saved one. Every output is written under a temporary name and
+// put in place only when the run succeeds: a failed run leaves an earlier run's files as they were.
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -12,8 +14,11 @@
 #include <map>
 #include <optional>
 
+#include "adaptive_lego_loam/core/common/scan_stamps.h"
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/io/atomic_files.h"
 #include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/map_files.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/progress.h"
 #include "adaptive_lego_loam/io/scan_sequence.h"
@@ -39,6 +44,9 @@ struct Options {
   bool adaptive = false;
   int max_frames = -1;
   bool cpu_time = false;
+  bool skip_bad_scans = false;
+  std::string save_map, localize;
+  std::vector<double> initial_pose;  // x, y, z, yaw in degrees
 };
 
 std::unique_ptr<ScanSequence> open_sequence(const Options& options) {
@@ -53,21 +61,45 @@ std::unique_ptr<ScanSequence> open_sequence(const Options& options) {
 
 class Outputs {
  public:
-  explicit Outputs(const std::string& dir) : dir_(dir) {
-    fs::create_directories(dir);
-    timing_.open(path("timing.csv"));
-    degeneration_.open(path("degeneration.csv"));
-    loops_.open(path("loops.csv"));
-    if (!timing_ || !degeneration_ || !loops_) throw IoError(dir + ": cannot write outputs there");
-    loops_ << "frame,current_keyframe,matched_keyframe,current_frame,matched_frame,source,status,"
-              "inlier_ratio,inlier_mse,fitness,relative_x,relative_y,relative_z,relative_yaw_deg,"
-              "closed\n";
-    timing_ << "frame";
+  explicit Outputs(const std::string& dir)
+      : dir_(dir),
+        timing_(prepared(dir, "timing.csv")),
+        degeneration_(path("degeneration.csv")),
+        loops_(path("loops.csv")),
+        localization_(path("localization.csv")) {
+    loops_.stream() << "frame,current_keyframe,matched_keyframe,current_frame,matched_frame,"
+                       "source,status,inlier_ratio,inlier_mse,fitness,relative_x,relative_y,"
+                       "relative_z,relative_yaw_deg,closed\n";
+    std::ofstream& timing = timing_.stream();
+    timing << "frame";
     for (const auto& stage : kStages)
-      timing_ << "," << stage;
-    timing_ << ",total,rss_mb\n";
-    degeneration_ << "frame,mu,beta0_deg,direction_x,direction_y,skeleton_points,normals,valid,"
-                     "map_degenerate_directions\n";
+      timing << "," << stage;
+    timing << ",total,rss_mb\n";
+    degeneration_.stream() << "frame,mu,beta0_deg,direction_x,direction_y,skeleton_points,"
+                              "normals,valid,map_degenerate_directions\n";
+    localization_.stream() << "frame,state,match_ratio,alignment,inlier_ratio,inlier_mse\n";
+  }
+
+  // Puts the streamed files in place (the run succeeded).
+  void commit(bool localizing) {
+    timing_.commit();
+    degeneration_.commit();
+    loops_.commit();
+    if (localizing) localization_.commit();
+  }
+
+  void add_localization(int frame, const std::optional<LocalizationStatus>& status) {
+    if (!status) return;
+    std::ofstream& out = localization_.stream();
+    out << frame << "," << to_string(status->state) << "," << status->match_ratio << ",";
+    if (status->alignment) {
+      const LoopDetection& alignment = *status->alignment;
+      out << (alignment.accepted() ? "accepted" : to_string(alignment.status)) << ","
+          << alignment.inlier_ratio << "," << alignment.inlier_mse;
+    } else {
+      out << ",,";
+    }
+    out << "\n";
   }
 
   std::string path(const std::string& name) const { return (fs::path(dir_) / name).string(); }
@@ -76,36 +108,38 @@ class Outputs {
   void add_loop(int frame, const std::optional<LoopDetection>& loop, bool closed,
                 const std::vector<Keyframe>& keyframes) {
     if (!loop && !closed) return;
-    loops_ << frame << ",";
+    std::ofstream& loops_out = loops_.stream();
+    loops_out << frame << ",";
     if (loop) {
       const auto frame_of = [&](int keyframe) {
         return keyframe >= 0 ? std::to_string(keyframes.at(keyframe).frame) : std::string();
       };
       const Eigen::Isometry3d& relative = loop->relative_pose;
-      loops_ << loop->current_index << "," << loop->matched_index << ","
-             << frame_of(loop->current_index) << "," << frame_of(loop->matched_index) << ","
-             << (loop->source == CandidateSource::kPlace ? "place" : "radius") << ","
-             << (loop->accepted() ? "verified" : to_string(loop->status)) << ","
-             << loop->inlier_ratio << "," << loop->inlier_mse << "," << loop->fitness << ","
-             << relative.translation().x() << "," << relative.translation().y() << ","
-             << relative.translation().z() << ","
-             << std::atan2(relative(1, 0), relative(0, 0)) * 180.0 / M_PI;
+      loops_out << loop->current_index << "," << loop->matched_index << ","
+                << frame_of(loop->current_index) << "," << frame_of(loop->matched_index) << ","
+                << (loop->source == CandidateSource::kPlace ? "place" : "radius") << ","
+                << (loop->accepted() ? "verified" : to_string(loop->status)) << ","
+                << loop->inlier_ratio << "," << loop->inlier_mse << "," << loop->fitness << ","
+                << relative.translation().x() << "," << relative.translation().y() << ","
+                << relative.translation().z() << ","
+                << std::atan2(relative(1, 0), relative(0, 0)) * 180.0 / M_PI;
     } else {
-      loops_ << ",,,,,,,,,,,,,";
+      loops_out << ",,,,,,,,,,,,,";
     }
-    loops_ << "," << int(closed) << "\n";
+    loops_out << "," << int(closed) << "\n";
   }
 
   void add(const FrameResult& frame, const AmbientFilterResult& filtered) {
-    timing_ << frame.frame;
+    std::ofstream& timing = timing_.stream();
+    timing << frame.frame;
     for (const auto& stage : kStages)
-      timing_ << "," << frame.times.get(stage);
-    timing_ << "," << frame.times.total() << "," << resident_memory_mb() << "\n";
+      timing << "," << frame.times.get(stage);
+    timing << "," << frame.times.total() << "," << resident_memory_mb() << "\n";
     const Degeneration& d = filtered.degeneration;
-    degeneration_ << frame.frame << "," << filtered.mu << "," << filtered.beta0_deg << ","
-                  << d.weak_direction.x() << "," << d.weak_direction.y() << ","
-                  << filtered.skeleton_points << "," << d.normals << "," << int(d.valid) << ","
-                  << frame.mapping.degenerate_directions << "\n";
+    degeneration_.stream() << frame.frame << "," << filtered.mu << "," << filtered.beta0_deg << ","
+                           << d.weak_direction.x() << "," << d.weak_direction.y() << ","
+                           << filtered.skeleton_points << "," << d.normals << "," << int(d.valid)
+                           << "," << frame.mapping.degenerate_directions << "\n";
     stamps.push_back(frame.stamp);
     for (const auto& [stage, ms] : frame.times.entries())
       stage_ms[stage].push_back(ms);
@@ -117,8 +151,16 @@ class Outputs {
   std::vector<double> total_ms;
 
  private:
+  // The folder made first: the files' temporaries go beside their places.
+  static std::string prepared(const std::string& dir, const std::string& name) {
+    std::error_code error;
+    fs::create_directories(dir, error);
+    if (error) throw IoError(dir + ": cannot create the output folder: " + error.message());
+    return (fs::path(dir) / name).string();
+  }
+
   std::string dir_;
-  std::ofstream timing_, degeneration_, loops_;
+  AtomicFile timing_, degeneration_, loops_, localization_;
 };
 
 // Nearest rank: the smallest value with at least that share of the values at or below it.
@@ -141,8 +183,10 @@ nlohmann::json statistics(std::vector<double> values) {
 
 void write_poses(const Options& options, const Pipeline& pipeline, const Outputs& outputs) {
   const std::vector<Eigen::Isometry3d> poses = pipeline.trajectory();
-  write_kitti_poses(outputs.path("poses_kitti.txt"), poses);
-  write_tum_poses(outputs.path("poses_tum.txt"), outputs.stamps, poses);
+  write_atomically(outputs.path("poses_kitti.txt"),
+                   [&](const std::string& path) { write_kitti_poses(path, poses); });
+  write_atomically(outputs.path("poses_tum.txt"),
+                   [&](const std::string& path) { write_tum_poses(path, outputs.stamps, poses); });
   // KITTI's ground truth is in the left camera's frame: with a calib.txt beside the scans, also
   // write the poses there (camera pose = Tr * lidar pose * Tr^-1).
   if (const auto calib = kitti_calib_beside(options.input)) {
@@ -150,8 +194,48 @@ void write_poses(const Options& options, const Pipeline& pipeline, const Outputs
     std::vector<Eigen::Isometry3d> camera;
     for (const auto& pose : poses)
       camera.push_back(tr * pose * tr.inverse());
-    write_kitti_poses(outputs.path("poses_camera.txt"), camera);
+    write_atomically(outputs.path("poses_camera.txt"),
+                     [&](const std::string& path) { write_kitti_poses(path, camera); });
   }
+}
+
+std::unique_ptr<Pipeline> make_pipeline(const Options& options, const Config& config) {
+  if (options.localize.empty()) return std::make_unique<Pipeline>(config);
+  SavedMap map = load_map(options.localize);
+  if (!map.description.sensor.empty() && map.description.sensor != config.sensor.name) {
+    std::fprintf(stderr, "run_sequence: warning: the map %s was made with sensor %s, not %s\n",
+                 options.localize.c_str(), map.description.sensor.c_str(),
+                 config.sensor.name.c_str());
+  }
+  std::fprintf(stderr, "run_sequence: localizing on %s (%zu keyframes)\n", options.localize.c_str(),
+               map.keyframes.size());
+  return std::make_unique<Pipeline>(
+      config, std::move(map.keyframes),
+      options.initial_pose.empty()
+          ? Eigen::Isometry3d::Identity()
+          : initial_pose(options.initial_pose[0], options.initial_pose[1], options.initial_pose[2],
+                         options.initial_pose[3]));
+}
+
+// What localization did over the run.
+struct LocalizationCounts {
+  int tracked = 0, lost = 0, aligning = 0, alignments = 0, accepted = 0;
+  void add(const std::optional<LocalizationStatus>& status) {
+    if (!status) return;
+    tracked += status->state == LocalizationState::kTracking;
+    lost += status->state == LocalizationState::kLost;
+    aligning += status->state == LocalizationState::kAligning;
+    alignments += status->alignment.has_value();
+    accepted += status->alignment && status->alignment->accepted();
+  }
+};
+
+// The stand-in for a scan that could not be read (--skip-bad-scans): no points, so the pipeline
+// predicts its pose and the poses stay one a frame.
+Scan skipped_scan(double last_stamp, double scan_period) {
+  Scan scan;
+  scan.stamp = last_stamp + scan_period;
+  return scan;
 }
 
 int run(const Options& options) {
@@ -163,8 +247,8 @@ int run(const Options& options) {
     config.ambient.mode = Beta0Mode::kAdaptive;
   }
   std::unique_ptr<ScanSequence> sequence = open_sequence(options);
+  std::unique_ptr<Pipeline> pipeline = make_pipeline(options, config);
   Outputs outputs(options.output);
-  Pipeline pipeline(config);
   const int total = options.max_frames >= 0 && sequence->size() >= 0
                         ? std::min(options.max_frames, sequence->size())
                         : sequence->size();
@@ -175,36 +259,63 @@ int run(const Options& options) {
                    : ("fixed beta0 " + std::to_string(config.ambient.fixed_beta0_deg)).c_str());
   ProgressBar progress("run_sequence", total);
   Stopwatch wall(Clock::kWall);
-  int frames = 0, empty_scans = 0, motion_gated_scans = 0;
+  int frames = 0, empty_scans = 0, motion_gated_scans = 0, skipped_scans = 0;
+  ScanStamps stamps(config.sensor.scan_period);
+  LocalizationCounts localization;
+  double last_stamp = 0.0;
   std::string failure;
   try {
     while (options.max_frames < 0 || frames < options.max_frames) {
-      std::optional<Scan> scan = sequence->next();
+      std::optional<Scan> scan;
+      try {
+        scan = sequence->next();
+      } catch (const IoError& e) {
+        if (!options.skip_bad_scans) throw;
+        std::fprintf(stderr, "\nrun_sequence: warning: frame %d skipped: %s\n", frames, e.what());
+        ++skipped_scans;
+        scan = skipped_scan(last_stamp, config.sensor.scan_period);
+      }
       if (!scan) break;
-      const FrameResult& result = pipeline.process(*scan);
+      stamps.add(scan->stamp);
+      last_stamp = scan->stamp;
+      const FrameResult& result = pipeline->process(*scan);
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
-      outputs.add(result, pipeline.filter_result());
-      outputs.add_loop(result.frame, result.loop, result.loop_closed, pipeline.keyframes());
+      localization.add(result.localization);
+      outputs.add(result, pipeline->filter_result());
+      outputs.add_loop(result.frame, result.loop, result.loop_closed, pipeline->keyframes());
+      outputs.add_localization(result.frame, result.localization);
       progress.update(++frames);
     }
   } catch (const std::exception& e) {
-    failure = e.what();  // keep what was done so far
+    failure = e.what();
   }
   progress.finish();
+  if (!failure.empty()) {
+    throw std::runtime_error(failure + " (after " + std::to_string(frames) +
+                             " frames; nothing written, earlier outputs in " + options.output +
+                             " are as they were)");
+  }
+  if (frames == 0) throw IoError(options.input + ": no scans");
   // A loop closure still running at the end of the input finishes now, outside every scan's
   // time: the online mapping would finish it over the next scans.
   nlohmann::json final_loop_closure;
-  if (failure.empty()) {
+  {
     const Stopwatch stopwatch;
-    if (const std::optional<LoopDetection> loop = pipeline.finish_loop_closure()) {
+    if (const std::optional<LoopDetection> loop = pipeline->finish_loop_closure()) {
       final_loop_closure = {{"status", to_string(loop->status)},
                             {"fitness", loop->fitness},
                             {"ms", stopwatch.elapsed_ms()}};
     }
   }
   const double wall_s = wall.elapsed_ms() / 1000.0;
-  if (frames > 0) write_poses(options, pipeline, outputs);
+  write_poses(options, *pipeline, outputs);
+  if (!options.save_map.empty()) {
+    const MapDescription description{fs::absolute(options.config).string(), config.sensor.name,
+                                     "run_sequence", frames};
+    save_map(options.save_map, pipeline->keyframes(), description, config);
+    std::fprintf(stderr, "run_sequence: map saved in %s\n", options.save_map.c_str());
+  }
 
   nlohmann::json summary;
   summary["input"] = options.input;
@@ -214,9 +325,14 @@ int run(const Options& options) {
     summary["beta0_deg"] = config.ambient.fixed_beta0_deg;
   summary["frames"] = frames;
   summary["scans_without_valid_points"] = empty_scans;
-  summary["keyframes"] = pipeline.keyframes().size();
-  summary["loops_closed"] = pipeline.mapping().loops_closed();
-  const LoopClosureCounts& loops = pipeline.mapping().loop_closure_counts();
+  summary["skipped_scans"] = skipped_scans;
+  summary["input_stamps"] = {{"gaps", stamps.gaps()},
+                             {"missing_scans", stamps.missing()},
+                             {"duplicates", stamps.duplicates()},
+                             {"backward_jumps", stamps.backward_jumps()}};
+  summary["keyframes"] = pipeline->keyframes().size();
+  summary["loops_closed"] = pipeline->mapping().loops_closed();
+  const LoopClosureCounts& loops = pipeline->mapping().loop_closure_counts();
   summary["loop_closure"] = {{"place_candidates", loops.place_candidates},
                              {"radius_candidates", loops.radius_candidates},
                              {"verified", loops.verified},
@@ -225,6 +341,15 @@ int run(const Options& options) {
                              {"closed", loops.closed},
                              {"removed", loops.removed}};
   if (!final_loop_closure.is_null()) summary["loop_closure_after_last_scan"] = final_loop_closure;
+  if (!options.localize.empty()) {
+    summary["localization"] = {{"map", options.localize},
+                               {"tracked_scans", localization.tracked},
+                               {"lost_scans", localization.lost},
+                               {"aligning_scans", localization.aligning},
+                               {"alignments", localization.alignments},
+                               {"accepted_alignments", localization.accepted}};
+  }
+  if (!options.save_map.empty()) summary["saved_map"] = options.save_map;
   summary["motion_gated_scans"] = motion_gated_scans;
   summary["wall_time_s"] = wall_s;
   summary["frames_per_second"] = wall_s > 0 ? frames / wall_s : 0.0;
@@ -233,23 +358,27 @@ int run(const Options& options) {
   for (const auto& [stage, values] : outputs.stage_ms)
     summary["stage_ms"][stage] = statistics(values);
   summary["peak_rss_mb"] = peak_resident_memory_mb();
-  if (!failure.empty()) summary["error"] = failure;
-  std::ofstream(outputs.path("summary.json")) << summary.dump(2) << "\n";
+  outputs.commit(!options.localize.empty());
+  write_atomically(outputs.path("summary.json"), [&](const std::string& path) {
+    std::ofstream file(path);
+    file << summary.dump(2) << "\n";
+    if (!file) throw IoError(path + ": cannot write");
+  });
 
-  if (!failure.empty()) {
-    std::fprintf(stderr, "run_sequence: %s (after %d frames; their outputs are written)\n",
-                 failure.c_str(), frames);
-    return tools::kExitFailure;
-  }
   const nlohmann::json& frame_ms = summary["frame_ms"];
   std::printf(
       "frames %d, keyframes %zu, %.1f frames/s, frame ms mean %.1f p95 %.1f max %.1f, "
       "peak RSS %.0f MB\noutputs in %s\n",
-      frames, pipeline.keyframes().size(), frames / std::max(wall_s, 1e-9),
+      frames, pipeline->keyframes().size(), frames / std::max(wall_s, 1e-9),
       frame_ms.is_null() ? 0.0 : frame_ms["mean"].get<double>(),
       frame_ms.is_null() ? 0.0 : frame_ms["p95"].get<double>(),
       frame_ms.is_null() ? 0.0 : frame_ms["max"].get<double>(), peak_resident_memory_mb(),
       options.output.c_str());
+  if (!options.localize.empty()) {
+    std::printf("localization: %d of %d scans tracked, %d lost, %d alignments (%d accepted)\n",
+                localization.tracked, frames, localization.lost, localization.alignments,
+                localization.accepted);
+  }
   return tools::kExitOk;
 }
 
@@ -259,7 +388,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Run adaptive_lego_loam over a sequence: KITTI folder (velodyne/*.bin), a folder of "
       ".bin/.pcd scans, or a bag. Writes poses_kitti.txt, poses_tum.txt, timing.csv, "
-      "degeneration.csv and summary.json to the output folder."};
+      "degeneration.csv, loops.csv and summary.json to the output folder, each put in place only "
+      "when the run succeeds."};
   Options options;
   app.add_option("--config", options.config, "sensor config (config/*.yaml)")->required();
   app.add_option("--input", options.input, "KITTI sequence folder, scan folder or .bag")
@@ -277,6 +407,24 @@ int main(int argc, char** argv) {
   app.add_flag("--cpu-time", options.cpu_time,
                "stage times (timing.csv, summary.json) in thread CPU time instead of wall-clock "
                "time: what the stages cost on a machine shared with other work");
+  app.add_flag("--skip-bad-scans", options.skip_bad_scans,
+               "go on past a scan that cannot be read (a warning; its pose is predicted and it is "
+               "counted as skipped_scans in summary.json); default: stop there");
+  auto* save_map_option =
+      app.add_option("--save-map", options.save_map,
+                     "save the map in this folder at the end (PCD maps, keyframes, poses; "
+                     "written atomically)");
+  auto* localize =
+      app.add_option("--localize", options.localize,
+                     "localize on the map saved in this folder instead of mapping (no new "
+                     "keyframes join it, no loop closure); writes localization.csv")
+          ->excludes(save_map_option);
+  app.add_option("--initial-pose", options.initial_pose,
+                 "with --localize: the first scan's pose in the map, X,Y,Z,YAW_DEG "
+                 "(default 0,0,0,0: where the map's drive started)")
+      ->delimiter(',')
+      ->expected(4)
+      ->needs(localize);
   if (const auto status = tools::parse_command_line(app, argc, argv, "run_sequence")) {
     return *status;
   }

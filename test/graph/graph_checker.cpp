@@ -1,10 +1,15 @@
 // The checker of test/graph.test. Writes KITTI 07's five scans to a bag with kitti_to_bag's
 // writer, then plays them in lock step (each scan once the previous one is mapped) with /clock
-// through the four nodes, a malformed and a NaN-only cloud between two good scans, and compares
-// what comes out with the ground truth and with the offline Pipeline on the same scans.
+// through the four stages (nodes, nodelets, or two launches), a malformed and a NaN-only cloud
+// between two good scans, and compares what comes out with the ground truth and with the
+// offline Pipeline on the same scans; then saves the map through the save_map service.
 
 #include <adaptive_lego_loam/DegenerationState.h>
+#include <adaptive_lego_loam/SaveMap.h>
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
 
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
@@ -28,6 +33,7 @@
 #include <map>
 
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/io/map_files.h"
 #include "adaptive_lego_loam/ros/cloud_conversions.h"
 #include "adaptive_lego_loam/ros/kitti_bag.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
@@ -44,6 +50,8 @@ struct Recording {
   std::map<ros::Time, Eigen::Isometry3d> mapped, integrated;
   std::map<ros::Time, DegenerationState> degeneration;
   std::vector<std::string> image_projection_warnings;
+  // The newest status of each name on /diagnostics ("image_projection: scans", ...).
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;
   std::optional<Eigen::Isometry3d> tf_map_to_sensor;  // at the last scan's stamp
   bool every_scan_mapped = true;
 };
@@ -150,12 +158,33 @@ class Player {
         "/degeneration", 10, [this](const DegenerationStateConstPtr& m) {
           recording_.degeneration[m->header.stamp] = *m;
         }));
+    // Matched by the message's prefix: a nodelet logs under its manager's node name.
     subs_.push_back(nh_.subscribe<rosgraph_msgs::Log>(
         "/rosout", 100, [this](const rosgraph_msgs::LogConstPtr& m) {
-          if (m->name == "/image_projection" && m->level == rosgraph_msgs::Log::WARN) {
+          if (m->msg.rfind("image_projection:", 0) == 0 && m->level == rosgraph_msgs::Log::WARN) {
             recording_.image_projection_warnings.push_back(m->msg);
           }
         }));
+    subs_.push_back(nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
+        "/diagnostics", 100, [this](const diagnostic_msgs::DiagnosticArrayConstPtr& m) {
+          for (const auto& status : m->status)
+            recording_.diagnostics[status.name] = status;
+        }));
+  }
+
+  // Waits until the status `name` on /diagnostics has `key` = `value`.
+  bool wait_for_diagnostic(const std::string& name, const std::string& key,
+                           const std::string& value) {
+    return wait_for(
+        [&] {
+          const auto it = recording_.diagnostics.find(name);
+          if (it == recording_.diagnostics.end()) return false;
+          for (const auto& entry : it->second.values) {
+            if (entry.key == key) return entry.value == value;
+          }
+          return false;
+        },
+        10.0);
   }
 
   bool wait_for_graph() {
@@ -248,6 +277,27 @@ class Graph : public ::testing::Test {
     }
     const ros::Time last = bag_.clouds.back().header.stamp;
     recording_.tf_map_to_sensor = player.lookup("map", bag_.clouds.back().header.frame_id, last);
+    saw_dropped_in_diagnostics_ =
+        player.wait_for_diagnostic("image_projection: scans", "dropped: bad cloud", "2");
+    save_map_ = call_save_map((dir_ / "map").string());
+    if (save_map_) {
+      saw_saved_keyframes_in_diagnostics_ = player.wait_for_diagnostic(
+          "map_optimization: scans", "keyframes", std::to_string(save_map_->keyframes));
+    }
+    // A folder inside a file cannot be made: the service says so and the node goes on.
+    std::ofstream(dir_ / "a_file") << "not a folder\n";
+    failed_save_map_ = call_save_map((dir_ / "a_file" / "map").string());
+    save_map_after_failure_ = call_save_map((dir_ / "map_again").string());
+  }
+
+  static std::optional<SaveMap::Response> call_save_map(const std::string& folder) {
+    SaveMap service;
+    service.request.folder = folder;
+    if (!ros::service::waitForService("/map_optimization/save_map", ros::Duration(10.0)) ||
+        !ros::service::call("/map_optimization/save_map", service)) {
+      return std::nullopt;
+    }
+    return service.response;
   }
 
   static void TearDownTestSuite() { fs::remove_all(dir_); }
@@ -272,6 +322,10 @@ class Graph : public ::testing::Test {
   static inline bool graph_ready_ = false;
   static inline bool saw_missing_field_warning_ = false;
   static inline bool saw_nan_warning_ = false;
+  static inline bool saw_dropped_in_diagnostics_ = false;
+  static inline bool saw_saved_keyframes_in_diagnostics_ = false;
+  static inline std::optional<SaveMap::Response> save_map_, failed_save_map_,
+      save_map_after_failure_;
 };
 
 TEST_F(Graph, EveryScanIsMappedOnce) {
@@ -306,8 +360,11 @@ TEST_F(Graph, SamePosesAsTheOfflinePipeline) {
 }
 
 TEST_F(Graph, MapOptimizationPairsTheDegenerationOnlyWithThePrior) {
+  // ~mapping_node: the node that registers map_optimization's topics (a nodelet's manager).
+  const std::string mapping_node =
+      ros::NodeHandle("~").param<std::string>("mapping_node", "/map_optimization");
   const bool subscribed = std::count(degeneration_subscribers_.begin(),
-                                     degeneration_subscribers_.end(), "/map_optimization") > 0;
+                                     degeneration_subscribers_.end(), mapping_node) > 0;
   EXPECT_EQ(subscribed, config_.mapping.weak_direction_prior > 0.0) << config_.source;
 }
 
@@ -334,6 +391,54 @@ TEST_F(Graph, MalformedCloudsAreLoggedDroppedAndTheNextScanMapped) {
   EXPECT_EQ(recording_.degeneration.size(), bag_.clouds.size());
   for (std::size_t i = kMalformedAfterScan + 1; i < bag_.clouds.size(); ++i)
     EXPECT_EQ(recording_.mapped.count(bag_.clouds[i].header.stamp), 1u) << "scan " << i;
+}
+
+TEST_F(Graph, DiagnosticsCountTheDroppedClouds) {
+  EXPECT_TRUE(saw_dropped_in_diagnostics_);
+  const auto it = recording_.diagnostics.find("image_projection: scans");
+  ASSERT_NE(it, recording_.diagnostics.end()) << "no image_projection status on /diagnostics";
+  std::map<std::string, std::string> values;
+  for (const auto& entry : it->second.values)
+    values[entry.key] = entry.value;
+  EXPECT_EQ(values["scans dropped (total)"], "2");
+  EXPECT_EQ(values["beta0 mode"], "adaptive");
+  EXPECT_FALSE(values["mu"].empty());
+  for (const char* node :
+       {"feature_association: scans", "map_optimization: scans", "transform_fusion: scans"})
+    EXPECT_TRUE(recording_.diagnostics.count(node)) << node;
+}
+
+TEST_F(Graph, SaveMapWritesWhatPclReadsBack) {
+  ASSERT_TRUE(save_map_) << "save_map did not answer";
+  ASSERT_TRUE(save_map_->success) << save_map_->message;
+  const fs::path map = dir_ / "map";
+  EXPECT_NE(save_map_->message.find(map.string()), std::string::npos) << save_map_->message;
+  const SavedMap saved = load_map(map.string());
+  EXPECT_EQ(static_cast<int>(saved.keyframes.size()), save_map_->keyframes);
+  EXPECT_GE(save_map_->keyframes, 1);
+  EXPECT_TRUE(saw_saved_keyframes_in_diagnostics_)
+      << "map_optimization's keyframe count on /diagnostics is not the saved one";
+  for (const char* file : {"global_map.pcd", "corner_map.pcd", "surface_map.pcd"}) {
+    pcl::PointCloud<pcl::PointXYZI> cloud;
+    ASSERT_EQ(pcl::io::loadPCDFile((map / file).string(), cloud), 0) << file;
+    EXPECT_GT(cloud.size(), 1000u) << file;
+  }
+  pcl::PointCloud<pcl::PointXYZI> keyframe;
+  EXPECT_EQ(pcl::io::loadPCDFile((map / "keyframes" / "000000_surfaces.pcd").string(), keyframe),
+            0);
+  EXPECT_GT(keyframe.size(), 100u);
+  EXPECT_TRUE(fs::exists(map / "keyframe_poses_kitti.txt"));
+  EXPECT_TRUE(fs::exists(map / "keyframe_poses_tum.txt"));
+}
+
+TEST_F(Graph, SaveMapToAFolderThatCannotBeMadeFailsAndTheNodeGoesOn) {
+  ASSERT_TRUE(failed_save_map_) << "save_map did not answer";
+  EXPECT_FALSE(failed_save_map_->success);
+  EXPECT_NE(failed_save_map_->message.find("a_file"), std::string::npos)
+      << failed_save_map_->message;
+  EXPECT_FALSE(fs::exists(dir_ / "a_file" / "map"));
+  ASSERT_TRUE(save_map_after_failure_) << "map_optimization stopped answering";
+  EXPECT_TRUE(save_map_after_failure_->success) << save_map_after_failure_->message;
 }
 
 TEST_F(Graph, TfChainMapOdomSensorGivesTheMappedPose) {

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/point_fields.h"
@@ -25,7 +26,7 @@ TEST(PointFields, DecodesIntegerRingAndNanosecondTime) {
       {"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"ring", 12, 4, 1}, {"t", 14, 6, 1}};
   packed.data = reinterpret_cast<const uint8_t*>(records);
   packed.data_size = sizeof(records);
-  packed.points = 2;
+  packed.width = 2;
   packed.point_step = sizeof(Record);
   const Scan scan = decode_points(packed, "test");
   ASSERT_EQ(scan.points.size(), 2u);
@@ -41,12 +42,92 @@ TEST(PointFields, ShortDataAndFieldPastStepAreErrors) {
   packed.fields = {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}};
   packed.data = reinterpret_cast<const uint8_t*>(values);
   packed.data_size = sizeof(values);
-  packed.points = 2;
+  packed.width = 2;
   packed.point_step = 12;
   EXPECT_NE(error_of([&] { decode_points(packed, "/velodyne_points"); }).find("expected 2 points"),
             std::string::npos);
-  packed.points = 1;
+  packed.width = 1;
   packed.fields[2].offset = 10;
   EXPECT_NE(error_of([&] { decode_points(packed, "/velodyne_points"); }).find("runs past"),
             std::string::npos);
+}
+
+namespace {
+
+// x, y, z float32 records of `width` x `height` points, `padding` bytes after each row.
+struct Rows {
+  std::vector<uint8_t> bytes;
+  PackedPoints packed;
+};
+
+Rows xyz_rows(uint32_t width, uint32_t height, uint32_t padding) {
+  Rows rows;
+  for (uint32_t row = 0; row < height; ++row) {
+    for (uint32_t col = 0; col < width; ++col) {
+      const float xyz[3] = {float(row), float(col), float(10 * row + col)};
+      const auto* bytes = reinterpret_cast<const uint8_t*>(xyz);
+      rows.bytes.insert(rows.bytes.end(), bytes, bytes + sizeof(xyz));
+    }
+    rows.bytes.insert(rows.bytes.end(), padding, 0xee);
+  }
+  rows.packed.fields = {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}};
+  rows.packed.data = rows.bytes.data();
+  rows.packed.data_size = rows.bytes.size();
+  rows.packed.width = width;
+  rows.packed.height = height;
+  rows.packed.point_step = 12;
+  rows.packed.row_step = width * 12 + padding;
+  return rows;
+}
+
+}  // namespace
+
+TEST(PointFields, OrganizedRowsSkipTheirPadding) {
+  const Rows rows = xyz_rows(2, 3, 8);
+  const Scan scan = decode_points(rows.packed, "/os_cloud");
+  ASSERT_EQ(scan.points.size(), 6u);
+  EXPECT_EQ(scan.points[3].x, 1.f);  // row 1, column 1
+  EXPECT_EQ(scan.points[3].y, 1.f);
+  EXPECT_EQ(scan.points[5].z, 21.f);
+}
+
+TEST(PointFields, RowStepShorterThanARowIsAnError) {
+  Rows rows = xyz_rows(2, 2, 0);
+  rows.packed.row_step = 20;
+  const std::string error = error_of([&] { decode_points(rows.packed, "/os_cloud"); });
+  EXPECT_NE(error.find("/os_cloud: row_step 20 is less than width 2 x point_step 12"),
+            std::string::npos)
+      << error;
+}
+
+TEST(PointFields, WidthTimesHeightBeyondTheDataIsAnErrorNotAnAllocation) {
+  // 2^30 x 2^30 points of 16 bytes is 2^64 bytes: the product wraps to 0 in 64 bits.
+  Rows rows = xyz_rows(1, 1, 4);
+  rows.packed.width = 1u << 30;
+  rows.packed.height = 1u << 30;
+  rows.packed.point_step = 16;
+  rows.packed.row_step = 0;
+  const std::string error = error_of([&] { decode_points(rows.packed, "/velodyne_points"); });
+  EXPECT_NE(
+      error.find("/velodyne_points: data holds 16 bytes, expected 1152921504606846976 points"),
+      std::string::npos)
+      << error;
+}
+
+TEST(PointFields, RingBeyondInt32ReadsAsNoLaser) {
+  struct Record {
+    float x, y, z;
+    uint32_t ring;
+  };
+  const Record records[2] = {{1, 2, 3, 4294967295u}, {4, 5, 6, 12}};
+  PackedPoints packed;
+  packed.fields = {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"ring", 12, 6, 1}};
+  packed.data = reinterpret_cast<const uint8_t*>(records);
+  packed.data_size = sizeof(records);
+  packed.width = 2;
+  packed.point_step = sizeof(Record);
+  const Scan scan = decode_points(packed, "/points");
+  ASSERT_EQ(scan.points.size(), 2u);
+  EXPECT_EQ(scan.points[0].ring, -1);
+  EXPECT_EQ(scan.points[1].ring, 12);
 }

@@ -198,3 +198,23 @@ TEST(KittiTimes, ReadsSequence07AndRejectsTwoNumbers) {
   EXPECT_EQ(error_of([&] { read_kitti_times(path); }),
             path + ":2: expected 1 number (a timestamp), found 2");
 }
+
+TEST(PoseFiles, ParseTwinsReadTextAndNameTheSource) {
+  const auto poses = parse_kitti_poses("1 0 0 2 0 1 0 3 0 0 1 4\n", "bag:/poses");
+  ASSERT_EQ(poses.size(), 1u);
+  EXPECT_EQ(poses[0].translation().z(), 4.0);
+  EXPECT_EQ(parse_kitti_times("0.5\n\n1.5\n", "times").back(), 1.5);
+  EXPECT_EQ(parse_tum_poses("# t x y z qx qy qz qw\n2 1 1 1 0 0 0 1\n", "tum").times[0], 2.0);
+  EXPECT_EQ(parse_kitti_calib_tr("Tr: 1 0 0 9 0 1 0 0 0 0 1 0\n", "calib").translation().x(), 9.0);
+  EXPECT_EQ(error_of([] { parse_kitti_times("1 2\n", "mem/times.txt"); }),
+            "mem/times.txt:1: expected 1 number (a timestamp), found 2");
+}
+
+TEST(TumPoses, HugeQuaternionIsNormalisedNotZeroed) {
+  // (qx qy qz qw) = (1e200, 0, 0, 0): a half turn about x, as (1, 0, 0, 0) is.
+  const StampedPoses stamped = parse_tum_poses("0 1 2 3 1e200 0 0 0\n", "tum.txt");
+  ASSERT_EQ(stamped.poses.size(), 1u);
+  EXPECT_TRUE(
+      stamped.poses[0].linear().isApprox(Eigen::Vector3d(1, -1, -1).asDiagonal().toDenseMatrix()))
+      << stamped.poses[0].linear();
+}

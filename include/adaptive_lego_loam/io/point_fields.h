@@ -34,8 +34,10 @@ struct PackedPoints {
   std::vector<FieldDescription> fields;
   const uint8_t* data = nullptr;
   std::size_t data_size = 0;  // bytes available at `data`
-  std::size_t points = 0;     // width * height
+  uint32_t width = 0;         // points per row
+  uint32_t height = 1;        // rows
   uint32_t point_step = 0;
+  uint32_t row_step = 0;  // bytes from one row to the next; 0: width * point_step
   bool big_endian = false;
 };
 
@@ -49,8 +51,10 @@ PackedPoints packed_points(const PointCloud2& cloud) {
   }
   packed.data = cloud.data.data();
   packed.data_size = cloud.data.size();
-  packed.points = static_cast<std::size_t>(cloud.width) * cloud.height;
+  packed.width = cloud.width;
+  packed.height = cloud.height;
   packed.point_step = cloud.point_step;
+  packed.row_step = cloud.row_step;
   packed.big_endian = cloud.is_bigendian;
   return packed;
 }
@@ -58,7 +62,8 @@ PackedPoints packed_points(const PointCloud2& cloud) {
 // Accepted names: x, y, z (required); intensity | reflectance | i; ring | channel (any integer
 // type); time (float seconds from the sweep start) | t | time_stamp | timestamp (integer
 // nanoseconds, or float seconds). Throws IoError naming `source` when a required field is
-// missing, has a non-numeric type or lies outside the record, or when the data is short.
+// missing, has a non-numeric type or lies outside the record, when a row is longer than the row
+// step, or when the data is short. A ring value beyond int32 reads as -1 (no laser).
 Scan decode_points(const PackedPoints& packed, const std::string& source);
 
 }  // namespace adaptive_lego_loam

@@ -10,10 +10,17 @@ namespace adaptive_lego_loam {
 
 // Throws IoError naming the file when it cannot be opened or its size is not a multiple of 16.
 Scan read_kitti_bin(const std::string& path);
+// The same from the file's bytes; `source` names them in messages.
+Scan parse_kitti_bin(const std::string& bytes, const std::string& source);
 void write_kitti_bin(const std::string& path, const Scan& scan);
 
-// Any PCD that PCL reads (ASCII, binary, binary_compressed), with the fields of decode_points().
+// PCD v0.5 to v0.7 as PCL writes it (DATA ascii, binary or binary_compressed), with the fields of
+// decode_points(). Throws IoError as "<path>:<line>: ..." for a bad header line, and naming the
+// file and what was expected when the data does not match the header (POINTS, the fields' SIZE
+// and COUNT) or a value does not parse as its TYPE.
 Scan read_pcd(const std::string& path);
+// The same from the file's bytes; `source` names them in messages.
+Scan parse_pcd(const std::string& bytes, const std::string& source);
 
 // By extension: .bin (KITTI) or .pcd.
 Scan read_scan_file(const std::string& path);

@@ -47,6 +47,22 @@ class ThrottledWarning {
   Throttle throttle_;
 };
 
+// Each stage's milliseconds summed over the frames since the last clear().
+class StageTotals {
+ public:
+  void add(const StageTimes& times);
+  void clear();
+  int frames() const { return frames_; }
+  // Per stage, in first-seen order, and all stages together.
+  const std::vector<std::pair<std::string, double>>& totals_ms() const { return total_ms_; }
+  double all_ms() const { return all_ms_; }
+
+ private:
+  int frames_ = 0;
+  std::vector<std::pair<std::string, double>> total_ms_;
+  double all_ms_ = 0.0;
+};
+
 class StageSummary {
  public:
   // `label` starts the line (the node's name).
@@ -73,9 +89,7 @@ class StageSummary {
   std::string label_;
   double period_s_;
   std::optional<double> start_s_;
-  int frames_ = 0;
-  std::vector<std::pair<std::string, double>> total_ms_;  // per stage, in first-seen order
-  double all_ms_ = 0.0;
+  StageTotals totals_;
 };
 
 // One line of a frame's stage times for the debug log: "projection 3.12 ms, ground 0.40 ms".

@@ -23,6 +23,14 @@ nav_msgs::Odometry odometry_to_ros(const Eigen::Isometry3d& pose, const std_msgs
 // normalised.
 Eigen::Isometry3d pose_from_ros(const geometry_msgs::Pose& pose, const std::string& source);
 
+// A motion over `dt` seconds (the child frame's pose at the end in its pose at the start) as the
+// constant velocity nav_msgs/Odometry's twist holds, in the child frame: translation / dt and
+// rotation vector / dt; and back. dt > 0.
+geometry_msgs::Twist motion_to_twist(const Eigen::Isometry3d& motion, double dt);
+// Throws IoError naming `source` on a non-finite number.
+Eigen::Isometry3d motion_from_twist(const geometry_msgs::Twist& twist, double dt,
+                                    const std::string& source);
+
 geometry_msgs::TransformStamped transform_to_ros(const Eigen::Isometry3d& pose,
                                                  const std_msgs::Header& header,
                                                  const std::string& child_frame);

@@ -3,7 +3,8 @@
 // nodes downstream of image_projection need them: a group is handed on once every topic has
 // delivered its message for that stamp. Partial groups are dropped, and reported, when a later
 // scan completes first or when too many are pending; a message older than the last completed
-// group is dropped at once.
+// group is dropped at once, unless it is more than a second older: then time went back (a bag
+// played again in a loop) and the matcher starts over.
 
 #include <ros/time.h>
 
@@ -38,6 +39,8 @@ class StampMatcher {
     std::string describe() const;
   };
 
+  static constexpr double kJumpBack = 1.0;  // s
+
   // `slot_names` (e.g. the topics) name the slots in reports; `max_pending` >= 1.
   StampMatcher(std::vector<std::string> slot_names, std::size_t max_pending);
 
@@ -50,6 +53,8 @@ class StampMatcher {
 
   std::size_t pending() const { return pending_.size(); }
   std::size_t slots() const { return slot_names_.size(); }
+  // Times it started over after time went back.
+  int restarts() const { return restarts_; }
 
  private:
   Dropped partial(const ros::Time& stamp, const std::vector<Message>& messages, bool late) const;
@@ -59,6 +64,7 @@ class StampMatcher {
   std::map<ros::Time, std::vector<Message>> pending_;
   std::optional<ros::Time> last_completed_;
   std::vector<Dropped> dropped_;
+  int restarts_ = 0;
 };
 
 // The messages of one scan from several topics, for a node downstream of image_projection: grouped
@@ -70,10 +76,13 @@ class ScanPairing {
   // StampMatcher::add, logging the groups it dropped.
   std::optional<StampMatcher::Group> add(std::size_t slot, const ros::Time& stamp,
                                          StampMatcher::Message message);
+  // Incomplete groups dropped so far.
+  long dropped() const { return dropped_; }
 
  private:
   StampMatcher matcher_;
   ThrottledWarning warning_;
+  long dropped_ = 0;
 };
 
 }  // namespace adaptive_lego_loam::ros_bridge

@@ -10,6 +10,15 @@
 namespace adaptive_lego_loam {
 namespace {
 
+// A mapping key as text. YAML also allows a list or a mapping as a key, which names nothing here
+// (and which yaml-cpp refuses to convert to text with an exception of its own).
+std::string key_name(const YAML::Node& key, const std::string& source, const std::string& mapping) {
+  if (key.IsScalar()) return key.Scalar();
+  throw ConfigError(source + ": " + mapping + ": the key at line " +
+                    std::to_string(key.Mark().line + 1) +
+                    " is not a name (a list, a mapping or null)");
+}
+
 // Reads the keys of one YAML mapping, checking type and range, and remembers which keys it read
 // so that anything else in the mapping can be reported as unknown.
 class SectionReader {
@@ -87,7 +96,7 @@ class SectionReader {
   void reject_unknown_keys() const {
     if (!node_) return;
     for (const auto& entry : node_) {
-      const std::string key = entry.first.as<std::string>();
+      const std::string key = key_name(entry.first, source_, path_);
       if (!read_.count(key)) fail(full(key.c_str()), "is not a known key");
     }
   }
@@ -254,6 +263,20 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.reject_unknown_keys();
 }
 
+void read_localization(SectionReader& in, LocalizationParams& l) {
+  in.number("min_match_ratio", l.min_match_ratio, 0.0, 1.0);
+  in.number("lost_after_scans", l.lost_after_scans, 1, 100000);
+  in.number("search_radius", l.search_radius, 0.1, 10000.0);
+  in.number("retry_period", l.retry_period, 0.0, 3600.0);
+  in.number("recent_keyframes", l.recent_keyframes, 0, 10000);
+  in.reject_unknown_keys();
+}
+
+void read_saved_map(SectionReader& in, SavedMapParams& m) {
+  in.number("voxel_size", m.voxel_size, 0.0, 100.0);
+  in.reject_unknown_keys();
+}
+
 void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
   in.boolean("enabled", l.enabled);
   in.number("search_radius", l.search_radius, 0.1, 1000.0);
@@ -366,14 +389,18 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
   read_mapping(mapping, config.mapping);
   SectionReader loop_closure = section("loop_closure");
   read_loop_closure(loop_closure, config.loop_closure);
+  SectionReader localization = section("localization");
+  read_localization(localization, config.localization);
+  SectionReader saved_map = section("saved_map");
+  read_saved_map(saved_map, config.saved_map);
   SectionReader benchmark = section("clustering_benchmark");
   read_clustering_benchmark(benchmark, config.clustering_benchmark);
 
   for (const auto& entry : root) {
-    const std::string name = entry.first.as<std::string>();
+    const std::string name = key_name(entry.first, source, "(top level)");
     static const std::set<std::string> known = {
-        "sensor",   "segmentation", "ambient_filter", "features",
-        "odometry", "mapping",      "loop_closure",   "clustering_benchmark"};
+        "sensor",  "segmentation", "ambient_filter", "features",  "odometry",
+        "mapping", "loop_closure", "localization",   "saved_map", "clustering_benchmark"};
     if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
   }
   validate(config.sensor, source);

@@ -38,11 +38,6 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
   out.times.add("odometry", watch.lap_ms());
 }
 
-void LidarOdometry::use_mapped_pose(const Eigen::Isometry3d& pose) {
-  if (last_mapped_pose_) last_motion_ = last_mapped_pose_->inverse() * pose;
-  last_mapped_pose_ = pose;
-}
-
 bool uses_mapped_motion(const OdometryParams& odometry, const MappingParams& mapping) {
   return odometry.motion_from_mapping && mapping.enabled;
 }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "adaptive_lego_loam/core/spatial/voxel_filter.h"
 
@@ -9,6 +11,16 @@ namespace adaptive_lego_loam {
 
 namespace {
 constexpr double kLoopAttemptPeriod = 1.0;  // s
+
+// Localization leaves the saved map as it is: no loop closes, nothing merges, and this drive's
+// keyframes, tied to the map, need not lag.
+Config localization_config(Config config) {
+  config.loop_closure.enabled = false;
+  config.mapping.keyframe_merge_group = 1;
+  config.mapping.local_map_lag_keyframes = 0;
+  return config;
+}
+
 }  // namespace
 
 LidarMapping::LidarMapping(const Config& config)
@@ -20,6 +32,39 @@ LidarMapping::LidarMapping(const Config& config)
       local_map_(config.mapping),
       merger_(config.mapping),
       matcher_(config.mapping) {}
+
+LidarMapping::LidarMapping(const Config& config, std::vector<Keyframe> map,
+                           const Eigen::Isometry3d& start)
+    : LidarMapping(localization_config(config)) {
+  if (map.empty()) throw std::invalid_argument("localization: the map has no keyframes");
+  for (int i = 0; i < static_cast<int>(map.size()); ++i) {
+    if (map[i].index != i) {
+      throw std::invalid_argument("localization: map keyframe " + std::to_string(i) +
+                                  " has index " + std::to_string(map[i].index));
+    }
+  }
+  keyframes_ = std::move(map);
+  localization_params_ = config.localization;
+  localization_.emplace(config.localization, config.loop_closure,
+                        static_cast<int>(keyframes_.size()));
+  pose_ = start;
+}
+
+void LidarMapping::relocalize(const Eigen::Isometry3d& pose) {
+  if (!localization_) return;
+  pose_ = pose;
+  localization_->restart();
+  retire_recent_keyframes(0);
+}
+
+void LidarMapping::retire_recent_keyframes(int keep) {
+  const int first_own = localization_->map_keyframes();
+  for (int i = static_cast<int>(keyframes_.size()) - 1 - keep; i >= first_own; --i) {
+    if (!keyframes_[i].has_clouds()) break;  // older ones were retired before
+    keyframes_[i].corners.reset();
+    keyframes_[i].surfaces.reset();
+  }
+}
 
 void LidarMapping::start_loop_closure(double stamp) {
   const int newest = static_cast<int>(keyframes_.size()) - 1;
@@ -127,22 +172,35 @@ bool LidarMapping::motion_is_plausible(const Eigen::Isometry3d& motion) const {
 }
 
 bool LidarMapping::needs_keyframe() const {
-  if (keyframes_.empty()) return true;
+  // The first keyframe of this drive (a saved map's keyframes are not its own).
+  const int own_first = localization_ ? localization_->map_keyframes() : 0;
+  if (static_cast<int>(keyframes_.size()) <= own_first) return true;
   const Eigen::Isometry3d since = keyframes_.back().pose.inverse() * pose_;
   return since.translation().norm() >= params_.keyframe_distance ||
          Eigen::AngleAxisd(since.linear()).angle() >= params_.keyframe_angle_deg * M_PI / 180.0;
 }
 
-void LidarMapping::add_keyframe(const FeatureSet& features, double stamp, bool degenerate) {
+Keyframe LidarMapping::make_keyframe(const FeatureSet& features, double stamp,
+                                     const Eigen::Isometry3d& pose, bool degenerate) {
   Keyframe keyframe;
   keyframe.index = static_cast<int>(keyframes_.size());
   keyframe.frame = scans_;
   keyframe.stamp = stamp;
-  keyframe.pose = pose_;
+  keyframe.pose = pose;
   keyframe.degenerate = degenerate;
   keyframe.corners = pack(*keyframe_filter_(*features.less_sharp, params_.corner_voxel));
   keyframe.surfaces =
       pack(*keyframe_filter_(*features.less_flat, *features.outliers, params_.surface_voxel));
+  return keyframe;
+}
+
+void LidarMapping::add_keyframe(const FeatureSet& features, double stamp, bool degenerate) {
+  Keyframe keyframe = make_keyframe(features, stamp, pose_, degenerate);
+  if (localization_) {
+    keyframes_.push_back(std::move(keyframe));
+    retire_recent_keyframes(localization_params_.recent_keyframes);
+    return;
+  }
   if (loop_params_.enabled && loop_params_.place.enabled && !degenerate) {
     places_.add(keyframe.index, stamp,
                 places_.describe(
@@ -173,6 +231,8 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   const Eigen::Isometry3d previous_pose = pose_;
   out.match = MapMatchResult();
   out.match.pose = pose;
+  out.localization.reset();
+  bool may_be_keyframe = true;
 
   if (params_.enabled && !keyframes_.empty()) {
     local_map_.update(keyframes_, pose.translation());
@@ -180,16 +240,23 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
     const CloudPtr corners = scan_filter_(*features.less_sharp, params_.scan_corner_voxel);
     const CloudPtr surfaces =
         scan_filter_(*features.less_flat, *features.outliers, params_.scan_surface_voxel);
-    out.match = matcher_.match(*corners, *surfaces, local_map_, pose, prior);
-    pose = out.match.pose;
+    if (localization_) {
+      may_be_keyframe = localize(features, *corners, *surfaces, stamp, prior, pose, out);
+    } else {
+      out.match = matcher_.match(*corners, *surfaces, local_map_, pose, prior);
+      pose = out.match.pose;
+    }
     out.times.add("mapping", watch.lap_ms());
   }
+  const bool aligned =
+      out.localization && out.localization->alignment && out.localization->alignment->accepted();
   pose_ = pose;
-  // The velocity exists once two scans have been mapped.
-  if (scans_ >= 1) last_mapped_motion_ = previous_pose.inverse() * pose_;
+  // The velocity exists once two scans have been mapped (an alignment's jump is not motion).
+  if (scans_ >= 1) last_mapped_motion_ = aligned ? motion : previous_pose.inverse() * pose_;
   fusion_.update_mapping(odometry_pose, pose_);
   out.pose = pose_;
-  out.keyframe = !(scans_ == 0 && first_sweep_distorted_) && needs_keyframe();
+  out.motion = last_mapped_motion_;
+  out.keyframe = may_be_keyframe && !(scans_ == 0 && first_sweep_distorted_) && needs_keyframe();
   if (out.keyframe) {
     add_keyframe(features, stamp, out.match.degenerate_directions > 0);
     out.times.add("keyframes", watch.lap_ms());
@@ -212,6 +279,31 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   }
   ++scans_;
   out.times.add("keyframes", watch.lap_ms());
+}
+
+bool LidarMapping::localize(const FeatureSet& features, const Cloud& corners, const Cloud& surfaces,
+                            double stamp, const std::optional<WeakDirectionPrior>& prior,
+                            Eigen::Isometry3d& pose, MappingOutput& out) {
+  LocalizationTracker& tracker = *localization_;
+  // A first sweep that could not be de-skewed is no fit for the map: the next one is aligned.
+  const bool deskewed = !(scans_ == 0 && first_sweep_distorted_);
+  if (deskewed && tracker.alignment_due(stamp)) {
+    const LoopDetection alignment =
+        tracker.align(keyframes_, make_keyframe(features, stamp, pose, false), stamp);
+    if (alignment.accepted()) {
+      pose = alignment.correction * pose;
+      local_map_.update(keyframes_, pose.translation());
+    }
+  }
+  if (tracker.state() == LocalizationState::kTracking) {
+    out.match = matcher_.match(corners, surfaces, local_map_, pose, prior);
+    pose = out.match.pose;
+    tracker.assess(out.match, corners.size() + surfaces.size());
+    // The last scans before the track was lost may have put wrong keyframes in the map.
+    if (tracker.state() == LocalizationState::kLost) retire_recent_keyframes(0);
+  }
+  out.localization = tracker.take_status();
+  return tracker.state() == LocalizationState::kTracking;
 }
 
 std::vector<Eigen::Isometry3d> LidarMapping::trajectory() const {

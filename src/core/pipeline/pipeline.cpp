@@ -22,6 +22,12 @@ Pipeline::Pipeline(const Config& config)
       odometry_(config.sensor, config.features, config.odometry),
       mapping_(config) {}
 
+Pipeline::Pipeline(const Config& config, std::vector<Keyframe> map, const Eigen::Isometry3d& start)
+    : config_(config),
+      filter_(config),
+      odometry_(config.sensor, config.features, config.odometry),
+      mapping_(config, std::move(map), start) {}
+
 const FrameResult& Pipeline::process(const Scan& scan) {
   result_ = FrameResult();
   result_.frame = frames_++;
@@ -43,8 +49,8 @@ const FrameResult& Pipeline::process(const Scan& scan) {
 
   mapping_.process(features, odometry_out_.pose, scan.stamp,
                    weak_direction_prior(config_.mapping, filtered_), mapping_out_);
-  if (uses_mapped_motion(config_.odometry, config_.mapping)) {
-    odometry_.use_mapped_pose(mapping_out_.pose);
+  if (uses_mapped_motion(config_.odometry, config_.mapping) && mapping_out_.motion) {
+    odometry_.use_mapped_motion(*mapping_out_.motion);
   }
   result_.times.append(mapping_out_.times);
   result_.mapping = mapping_out_.match;
@@ -53,6 +59,7 @@ const FrameResult& Pipeline::process(const Scan& scan) {
   result_.motion_gated = mapping_out_.motion_gated;
   result_.loop = mapping_out_.loop;
   result_.loop_closed = mapping_out_.loop_closed;
+  result_.localization = mapping_out_.localization;
   return result_;
 }
 

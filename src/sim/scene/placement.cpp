@@ -43,7 +43,10 @@ std::vector<int64_t> Placer::cells_of(const Eigen::Vector2d& centre, double yaw,
       if (std::abs(offset.dot(ex)) > half.x() + 0.5 * kCell ||
           std::abs(offset.dot(ey)) > half.y() + 0.5 * kCell)
         continue;
-      cells.push_back((static_cast<int64_t>(x) << 32) ^ (static_cast<int64_t>(y) & 0xFFFFFFFFll));
+      // Shifted as unsigned: a negative index's shift is undefined.
+      cells.push_back(
+          static_cast<int64_t>((static_cast<uint64_t>(static_cast<int64_t>(x)) << 32) ^
+                               (static_cast<uint64_t>(static_cast<int64_t>(y)) & 0xFFFFFFFFull)));
     }
   }
   return cells;

@@ -162,3 +162,14 @@ TEST(Params, ClusteringBenchmarkMinClusterPoints) {
       error_of(std::string(kMinimal) + "clustering_benchmark:\n  min_cluster_size: 5\n");
   EXPECT_NE(typo.find("clustering_benchmark.min_cluster_size"), std::string::npos) << typo;
 }
+
+TEST(Params, KeyThatIsAListIsAConfigError) {
+  // yaml-cpp's own conversion error must not escape: a key must be a name.
+  std::string error = error_of(std::string(kMinimal) + "? [x]\n: 1\n");
+  EXPECT_NE(error.find("test.yaml: (top level): the key at line 4 is not a name"),
+            std::string::npos)
+      << error;
+  error = error_of("sensor: {rows: 16, [a]: 2}\n");
+  EXPECT_NE(error.find("test.yaml: sensor: the key at line 1 is not a name"), std::string::npos)
+      << error;
+}

@@ -228,6 +228,28 @@ struct LoopClosureParams {
   double robust_loss_scale = 2.0;  // sigmas
 };
 
+// Localization on a saved map (run_sequence --localize, launch/localization.launch): every scan
+// matched against the map's keyframes near it and the newest keyframes of this drive; none joins
+// the map.
+struct LocalizationParams {
+  // Tracking holds while at least this share of the scan's features find a line or plane in the
+  // map; lost_after_scans scans in a row below it and the localization is lost.
+  double min_match_ratio = 0.5;
+  int lost_after_scans = 5;
+  // While lost (or at the start) the scan is aligned by ICP from the predicted pose to the map's
+  // keyframes near it (the nearest within search_radius and its neighbours, as a loop candidate's
+  // map) and accepted on loop closure's inlier test; at most once a retry_period.
+  double search_radius = 20.0;  // m
+  double retry_period = 1.0;    // s
+  // This drive's newest keyframes that join the map's for matching (and leave it again).
+  int recent_keyframes = 10;
+};
+
+// The map a run saves (run_sequence --save-map, map_optimization's save_map service).
+struct SavedMapParams {
+  double voxel_size = 0.2;  // m: leaf of the saved global map
+};
+
 // Settings of the clustering benchmark tool (segmentation_bench), the same for every method.
 struct ClusteringBenchmarkParams {
   // Clusters with fewer points are not output. 1 counts every cluster: the benchmark's score
@@ -244,6 +266,8 @@ struct Config {
   OdometryParams odometry;
   MappingParams mapping;
   LoopClosureParams loop_closure;
+  LocalizationParams localization;
+  SavedMapParams saved_map;
   ClusteringBenchmarkParams clustering_benchmark;
 };
 

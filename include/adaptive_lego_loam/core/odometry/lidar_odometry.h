@@ -29,11 +29,10 @@ class LidarOdometry {
                 const OdometryParams& odometry);
   // `has_time`: whether the cloud's points carry their time in the sweep.
   void process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out);
-  // The last scan's pose as mapping refined it (map frame). From the second such pose on, the
-  // motion between the last two replaces the odometry's own estimate as the constant-velocity
-  // model that de-skews and predicts the next scan: mapping's is far better on 16-beam sensors.
-  // Call it only when uses_mapped_motion().
-  void use_mapped_pose(const Eigen::Isometry3d& pose);
+  // The last scan's motion as mapping refined it (MappingOutput::motion) replaces the odometry's
+  // own estimate as the constant-velocity model that de-skews and predicts the next scan:
+  // mapping's is far better on 16-beam sensors. Call it only when uses_mapped_motion().
+  void use_mapped_motion(const Eigen::Isometry3d& motion) { last_motion_ = motion; }
 
  private:
   SensorParams sensor_;
@@ -45,10 +44,9 @@ class LidarOdometry {
   bool first_ = true;
   Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
-  std::optional<Eigen::Isometry3d> last_mapped_pose_;
 };
 
-// Whether the odometry takes its motion model from mapping (LidarOdometry::use_mapped_pose).
+// Whether the odometry takes its motion model from mapping (LidarOdometry::use_mapped_motion).
 bool uses_mapped_motion(const OdometryParams& odometry, const MappingParams& mapping);
 
 }  // namespace adaptive_lego_loam

@@ -17,12 +17,16 @@
 #include "adaptive_lego_loam/core/mapping/scan_to_map.h"
 #include "adaptive_lego_loam/core/mapping/transform_fusion.h"
 #include "adaptive_lego_loam/core/odometry/feature_extraction.h"
+#include "adaptive_lego_loam/core/pipeline/localization_tracker.h"
 #include "adaptive_lego_loam/core/spatial/voxel_filter.h"
 
 namespace adaptive_lego_loam {
 
 struct MappingOutput {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // sensor in the map frame
+  // The mapped motion since the previous scan (from the second scan on), without the jumps of
+  // the map frame (a loop closed, an alignment in localization): the odometry's motion model.
+  std::optional<Eigen::Isometry3d> motion;
   MapMatchResult match;
   bool keyframe = false;
   bool motion_gated = false;  // the odometry's motion was implausible: the guess kept the velocity
@@ -31,6 +35,8 @@ struct MappingOutput {
   std::optional<LoopDetection> loop;
   // Loops entered the pose graph on this scan, which moved the poses.
   bool loop_closed = false;
+  // In localization mode.
+  std::optional<LocalizationStatus> localization;
   StageTimes times;
 };
 
@@ -48,12 +54,19 @@ struct LoopClosureCounts {
 class LidarMapping {
  public:
   explicit LidarMapping(const Config& config);
+  // Localization on a saved map: `map` (keyframe i at position i) stays as it is; each scan is
+  // matched against its keyframes and this drive's newest few (config.localization), from
+  // `start`, the first scan's pose in the map frame. No loop closure, no merging.
+  LidarMapping(const Config& config, std::vector<Keyframe> map, const Eigen::Isometry3d& start);
   // `odometry_pose`: the scan's pose in the odometry frame; the map pose is predicted from the
   // odometry's motion since the previous scan, then refined against the local map.
   void process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose, double stamp,
                const std::optional<WeakDirectionPrior>& prior, MappingOutput& out);
 
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
+  bool localizing() const { return localization_.has_value(); }
+  // Localization mode: the next scan is aligned to the map from `pose` (a new initial pose).
+  void relocalize(const Eigen::Isometry3d& pose);
   const LocalMap& local_map() const { return local_map_; }
   const TransformFusion& fusion() const { return fusion_; }
   int loops_closed() const { return counts_.closed - counts_.removed; }
@@ -70,6 +83,15 @@ class LidarMapping {
   bool motion_is_plausible(const Eigen::Isometry3d& motion) const;
   bool needs_keyframe() const;
   void add_keyframe(const FeatureSet& features, double stamp, bool degenerate);
+  Keyframe make_keyframe(const FeatureSet& features, double stamp, const Eigen::Isometry3d& pose,
+                         bool degenerate);
+  // Localization mode: the scan's map pose from `pose` (the prediction), aligned or matched;
+  // returns whether it may become a keyframe (it is tracked).
+  bool localize(const FeatureSet& features, const Cloud& corners, const Cloud& surfaces,
+                double stamp, const std::optional<WeakDirectionPrior>& prior,
+                Eigen::Isometry3d& pose, MappingOutput& out);
+  // This drive's keyframes but the newest `keep` give their clouds back (localization mode).
+  void retire_recent_keyframes(int keep);
   // A loop-closure attempt starts with a new keyframe that has a loop candidate, at most once a
   // second of data (LeGO-LOAM's rate) and one at a time; every scan then runs one bounded step of
   // it: the detection's, then, when accepted, the pose graph's. Returns the attempt on the scan
@@ -84,6 +106,8 @@ class LidarMapping {
 
   MappingParams params_;
   LoopClosureParams loop_params_;
+  LocalizationParams localization_params_;
+  std::optional<LocalizationTracker> localization_;
   // The first sweep of a sensor whose driver does not de-skew cannot be de-skewed (no motion is
   // known yet): a keyframe of it would bend the map for as long as it stays in it.
   bool first_sweep_distorted_;

@@ -23,7 +23,8 @@ struct FrameResult {
   bool keyframe = false;
   bool loop_closed = false;
   bool motion_gated = false;  // scan-to-map started from the previous velocity (see MappingParams)
-  std::optional<LoopDetection> loop;  // when loop closure was attempted on this scan
+  std::optional<LoopDetection> loop;               // when loop closure was attempted on this scan
+  std::optional<LocalizationStatus> localization;  // in localization mode
   bool deskewed_by_time_field = false;
   OdometryResult odometry;
   MapMatchResult mapping;
@@ -42,6 +43,8 @@ std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& para
 class Pipeline {
  public:
   explicit Pipeline(const Config& config);
+  // Localization on a saved map's keyframes from `start` (see LidarMapping).
+  Pipeline(const Config& config, std::vector<Keyframe> map, const Eigen::Isometry3d& start);
   const FrameResult& process(const Scan& scan);
   // At the end of the input: finishes a loop closure still in progress (see LidarMapping).
   std::optional<LoopDetection> finish_loop_closure() { return mapping_.finish_loop_closure(); }

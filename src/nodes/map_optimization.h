@@ -1,0 +1,95 @@
+#pragma once
+// map_optimization: scan-to-map matching against the local map of keyframes (LeGO-LOAM's
+// mapOptimization) on feature_association's features and odometry, with loop closure; or, given
+// ~map, localization on a saved map. Publishes the mapped pose, the map -> odom correction as TF,
+// the keyframe positions, the path and the local map; serves save_map.
+
+#include <adaptive_lego_loam/DegenerationState.h>
+#include <adaptive_lego_loam/SaveMap.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
+#include "adaptive_lego_loam/ros/node_config.h"
+#include "adaptive_lego_loam/ros/node_diagnostics.h"
+#include "adaptive_lego_loam/ros/node_logging.h"
+#include "adaptive_lego_loam/ros/stamp_matcher.h"
+
+namespace adaptive_lego_loam::nodes {
+
+class MapOptimizationNode {
+ public:
+  MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config);
+  // Saves the map to ~save_map_on_exit, when set.
+  ~MapOptimizationNode();
+
+ private:
+  enum Slot : std::size_t { kCorners, kSurfaces, kOutliers, kOdometry, kDegeneration };
+
+  void on_corners(const sensor_msgs::PointCloud2ConstPtr& msg) { add(kCorners, msg->header, msg); }
+  void on_surfaces(const sensor_msgs::PointCloud2ConstPtr& msg) {
+    add(kSurfaces, msg->header, msg);
+  }
+  void on_outliers(const sensor_msgs::PointCloud2ConstPtr& msg) {
+    add(kOutliers, msg->header, msg);
+  }
+  void on_odometry(const nav_msgs::OdometryConstPtr& msg) { add(kOdometry, msg->header, msg); }
+  void on_degeneration(const DegenerationStateConstPtr& msg) {
+    add(kDegeneration, msg->header, msg);
+  }
+  void on_initial_pose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
+  bool on_save_map(SaveMap::Request& request, SaveMap::Response& response);
+
+  void add(Slot slot, const std_msgs::Header& header, ros_bridge::StampMatcher::Message msg);
+  void process(const ros_bridge::StampMatcher::Group& group);
+  void map_scan(const ros_bridge::StampMatcher::Group& group);
+  std::string topic(Slot slot) const { return subscriptions_[slot].getTopic(); }
+  void log_loop(const LoopDetection& loop) const;
+  void log_localization(const LocalizationStatus& status);
+  void publish(const ros::Time& stamp);
+  void add_diagnostics(ros_bridge::HealthStatus& status) const;
+  std::unique_ptr<LidarMapping> make_mapping() const;
+  // Writes the map; returns the response's message (throws IoError when it cannot).
+  std::string save(const std::string& folder, double voxel_size);
+
+  Config config_;
+  std::string map_folder_;               // ~map: localization on this saved map
+  std::vector<Keyframe> map_keyframes_;  // ... its keyframes, to start over from
+  Eigen::Isometry3d initial_pose_ = Eigen::Isometry3d::Identity();
+  std::string save_on_exit_;          // ~save_map_on_exit
+  mutable std::mutex mapping_mutex_;  // the mapping, between scans and save_map
+  std::unique_ptr<LidarMapping> mapping_;
+  MappingOutput out_;
+  bool uses_prior_;
+  ros_bridge::FrameNames frames_;
+  std::string sensor_frame_;
+  std::vector<ros::Time> stamps_;  // of every mapped scan, for the path
+  std::optional<ros::Time> last_stamp_;
+  std::optional<LocalizationState> last_state_;
+  ros_bridge::ScanPairing pairing_;
+  long pairing_dropped_ = 0;
+  ros_bridge::Throttle surround_throttle_, path_throttle_;  // both grow with the map: throttled
+  ros_bridge::ThrottledWarning warn_;
+  ros_bridge::StageSummary summary_;
+  std::vector<ros::Subscriber> subscriptions_;  // in Slot order
+  ros::Subscriber initial_pose_sub_;
+  ros::Publisher mapped_pub_, surround_pub_, keyframe_pub_, path_pub_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  ros_bridge::NodeDiagnostics diagnostics_;
+  // save_map runs on its own thread: a save does not hold up the scans.
+  ros::CallbackQueue service_queue_;
+  ros::ServiceServer save_service_;
+  std::unique_ptr<ros::AsyncSpinner> service_spinner_;
+};
+
+}  // namespace adaptive_lego_loam::nodes
