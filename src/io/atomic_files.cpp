@@ -15,9 +15,16 @@ namespace adaptive_lego_loam {
 namespace fs = std::filesystem;
 namespace {
 
+// `path` without a trailing slash: "out/map/" names the folder map, as "out/map" does.
+fs::path normalised(const std::string& path) {
+  fs::path target = fs::path(path).lexically_normal();
+  if (!target.has_filename()) target = target.parent_path();
+  return target;
+}
+
 // Beside `path`, unique to this process: two runs writing the same output do not share one.
 std::string temporary_beside(const std::string& path) {
-  const fs::path target(path);
+  const fs::path target = normalised(path);
   return (target.parent_path() /
           ("." + target.filename().string() + ".partial-" + std::to_string(::getpid())))
       .string();
@@ -30,7 +37,8 @@ void remove_quietly(const std::string& path) {
 
 // Puts `temporary` in the place of `path`. A folder cannot be renamed over a non-empty one: the
 // two are swapped in one step (renameat2), and the old one, now at `temporary`, removed.
-void replace(const std::string& temporary, const std::string& path) {
+void replace(const std::string& temporary, const std::string& target) {
+  const std::string path = normalised(target).string();
   std::error_code error;
   const bool folder_there = fs::is_directory(path, error);
   if (!folder_there) {
@@ -83,6 +91,32 @@ void AtomicFile::commit() {
   }
   committed_ = true;
   replace(temporary_, path_);
+}
+
+AtomicBatch::~AtomicBatch() {
+  if (committed_) return;
+  for (const auto& [path, temporary] : files_)
+    remove_quietly(temporary);
+}
+
+void AtomicBatch::add(const std::string& path,
+                      const std::function<void(const std::string& temporary)>& write) {
+  const std::string temporary = temporary_beside(path);
+  remove_quietly(temporary);
+  try {
+    write(temporary);
+  } catch (...) {
+    remove_quietly(temporary);
+    throw;
+  }
+  files_.emplace_back(path, temporary);
+}
+
+void AtomicBatch::commit() {
+  if (committed_) return;
+  committed_ = true;
+  for (const auto& [path, temporary] : files_)
+    replace(temporary, path);
 }
 
 }  // namespace adaptive_lego_loam

@@ -133,7 +133,8 @@ MapDescription read_description(const std::string& dir) {
   } catch (const YAML::Exception& e) {
     throw IoError(path + ": not valid YAML: " + e.what());
   }
-  if (!yaml.IsMap() || !yaml["format"] || yaml["format"].as<std::string>() != kFormat) {
+  if (!yaml.IsMap() || !yaml["format"] || !yaml["format"].IsScalar() ||
+      yaml["format"].Scalar() != kFormat) {
     throw IoError(path + ": format: expected \"" + std::string(kFormat) + "\"");
   }
   MapDescription description;
@@ -206,9 +207,33 @@ std::vector<KeyframeEntry> read_keyframes(const std::string& dir) {
 
 }  // namespace
 
+void check_map_folder(const std::string& dir) {
+  fs::path path = fs::path(dir).lexically_normal();
+  if (!path.has_filename()) path = path.parent_path();
+  std::error_code error;
+  if (!fs::exists(path, error)) return;
+  if (!fs::is_directory(path, error)) {
+    throw IoError(dir +
+                  ": a file is there: a map is saved only in a new or empty folder or over "
+                  "a saved map");
+  }
+  if (fs::is_empty(path, error) || fs::exists(path / "map.yaml", error)) return;
+  throw IoError(dir +
+                ": a folder that holds no saved map (no map.yaml): a map is saved only in a "
+                "new or empty folder or over a saved map");
+}
+
 void save_map(const std::string& dir, const std::vector<Keyframe>& keyframes,
               const MapDescription& description, const Config& config, double global_voxel) {
   if (keyframes.empty()) throw IoError(dir + ": no keyframes to save yet");
+  constexpr double kMin = SavedMapParams::kMinVoxel, kMax = SavedMapParams::kMaxVoxel;
+  if (!(global_voxel == 0.0 || (global_voxel >= kMin && global_voxel <= kMax))) {
+    char text[160];
+    std::snprintf(text, sizeof(text), ": voxel size %g: expected 0 (the config's) or %g to %g m",
+                  global_voxel, kMin, kMax);
+    throw IoError(dir + text);
+  }
+  check_map_folder(dir);
   const double leaf = global_voxel > 0.0 ? global_voxel : config.saved_map.voxel_size;
   write_atomically(dir, [&](const std::string& folder) {
     std::error_code error;

@@ -64,17 +64,21 @@ double read_value(const uint8_t* at, uint8_t datatype, bool swap) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-// Finds the first field whose name is one of `names`; checks its type and extent.
+// Finds the first field whose name is one of `names`; checks its type and extent. An optional
+// field (intensity, ring, time) of a type that cannot be read is passed over; a coordinate's is
+// an error.
 const FieldDescription* find_field(const PackedPoints& packed,
                                    std::initializer_list<const char*> names,
-                                   const std::string& source) {
+                                   const std::string& source, bool required = false) {
   for (const char* name : names) {
     for (const FieldDescription& field : packed.fields) {
       if (field.name != name) continue;
       const std::size_t size = type_size(field.datatype);
       if (size == 0) {
-        throw IoError(source + ": field '" + field.name + "' has unknown datatype " +
-                      std::to_string(field.datatype) + "; expected 1..8 (PointField types)");
+        if (!required) continue;
+        throw IoError(source + ": field '" + field.name + "' has a type that cannot be read " +
+                      "(datatype " + std::to_string(field.datatype) +
+                      "); expected PointField types 1..8 (PCD: F 4 or 8, I or U 1, 2 or 4)");
       }
       if (field.offset + size > packed.point_step) {
         throw IoError(source + ": field '" + field.name + "' at offset " +
@@ -132,9 +136,9 @@ std::size_t checked_row_step(const PackedPoints& packed, const std::string& sour
 }  // namespace
 
 Scan decode_points(const PackedPoints& packed, const std::string& source) {
-  const FieldDescription* x = find_field(packed, {"x"}, source);
-  const FieldDescription* y = find_field(packed, {"y"}, source);
-  const FieldDescription* z = find_field(packed, {"z"}, source);
+  const FieldDescription* x = find_field(packed, {"x"}, source, true);
+  const FieldDescription* y = find_field(packed, {"y"}, source, true);
+  const FieldDescription* z = find_field(packed, {"z"}, source, true);
   if (!x) fail_missing_coordinate(packed, "x", source);
   if (!y) fail_missing_coordinate(packed, "y", source);
   if (!z) fail_missing_coordinate(packed, "z", source);

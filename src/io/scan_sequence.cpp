@@ -17,8 +17,9 @@ std::optional<Scan> FileSequence::next() {
   if (position_ >= files_.size()) return std::nullopt;
   // Moved on first: a scan that cannot be read is skipped when the caller goes on.
   const std::size_t index = position_++;
+  last_stamp_ = index < stamps_.size() ? stamps_[index] : 0.1 * index;
   Scan scan = read_scan_file(files_[index]);
-  scan.stamp = index < stamps_.size() ? stamps_[index] : 0.1 * index;
+  scan.stamp = *last_stamp_;
   return scan;
 }
 

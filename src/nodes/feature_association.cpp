@@ -38,13 +38,18 @@ FeatureAssociationNode::FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHan
 // As the offline pipeline: the last motion as mapping refined it (aft_mapped_to_init's twist)
 // de-skews and predicts the next scan. It is exact when mapping keeps up (the graph test plays
 // each scan after the last one was mapped); a scan that arrives first uses the odometry's own.
+// The motion model is per scan: after a gap (scans mapping dropped) the velocity is taken over
+// one sensor period, not over the gap.
 void FeatureAssociationNode::on_mapped(const nav_msgs::OdometryConstPtr& msg) {
   const std::optional<ros::Time> previous = last_mapped_stamp_;
   last_mapped_stamp_ = msg->header.stamp;
   if (!previous || msg->header.stamp <= *previous) return;
+  if (!ros_bridge::has_mapped_motion(*msg)) return;
+  const double gap = (msg->header.stamp - *previous).toSec();
+  const double period = config_.sensor.scan_period;
   try {
     odometry_.use_mapped_motion(ros_bridge::motion_from_twist(
-        msg->twist.twist, (msg->header.stamp - *previous).toSec(), mapped_sub_.getTopic()));
+        msg->twist.twist, gap <= 1.5 * period ? gap : period, mapped_sub_.getTopic()));
   } catch (const std::exception& e) {
     warn_(std::string("mapped motion ignored: ") + e.what());
   }

@@ -2,6 +2,7 @@
 
 #include <nav_msgs/Path.h>
 
+#include <filesystem>
 #include <sstream>
 
 #include "adaptive_lego_loam/io/io_error.h"
@@ -104,7 +105,7 @@ MapOptimizationNode::~MapOptimizationNode() {
   service_spinner_->stop();
   if (save_on_exit_.empty()) return;
   try {
-    ROS_INFO("map_optimization: %s", save(save_on_exit_, 0.0).c_str());
+    ROS_INFO("map_optimization: %s", save(save_on_exit_, 0.0).message.c_str());
   } catch (const std::exception& e) {
     ROS_ERROR("map_optimization: the map was not saved on exit: %s", e.what());
   }
@@ -117,9 +118,16 @@ std::unique_ptr<LidarMapping> MapOptimizationNode::make_mapping() const {
 
 void MapOptimizationNode::on_initial_pose(
     const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg) {
+  // rviz sends the pose in its fixed frame: only the map frame is the saved map's.
+  if (!msg->header.frame_id.empty() && msg->header.frame_id != frames_.map) {
+    warn_("initial pose ignored: it is in frame " + msg->header.frame_id + ", expected " +
+          frames_.map + " (set rviz's fixed frame to " + frames_.map + ")");
+    return;
+  }
   try {
     const Eigen::Isometry3d pose = ros_bridge::pose_from_ros(msg->pose.pose, "initialpose");
     std::lock_guard<std::mutex> lock(mapping_mutex_);
+    initial_pose_ = pose;  // also where a restart (time going back) starts from
     mapping_->relocalize(pose);
     ROS_INFO("map_optimization: new initial pose (%.2f, %.2f, %.2f): aligning to the map",
              pose.translation().x(), pose.translation().y(), pose.translation().z());
@@ -128,7 +136,7 @@ void MapOptimizationNode::on_initial_pose(
   }
 }
 
-std::string MapOptimizationNode::save(const std::string& folder, double voxel_size) {
+MapOptimizationNode::Saved MapOptimizationNode::save(const std::string& folder, double voxel_size) {
   std::vector<Keyframe> keyframes;
   MapDescription description{config_.source, config_.sensor.name, "map_optimization", 0};
   {
@@ -139,17 +147,19 @@ std::string MapOptimizationNode::save(const std::string& folder, double voxel_si
     keyframes = mapping_->keyframes();  // clouds shared, not copied
     description.frames = static_cast<int>(stamps_.size());
   }
-  save_map(folder, keyframes, description, config_, voxel_size);
-  return "map of " + std::to_string(keyframes.size()) + " keyframes saved in " + folder;
+  const std::string absolute = std::filesystem::absolute(folder).string();
+  save_map(absolute, keyframes, description, config_, voxel_size);
+  return {"map of " + std::to_string(keyframes.size()) + " keyframes saved in " + absolute,
+          static_cast<int>(keyframes.size())};
 }
 
 bool MapOptimizationNode::on_save_map(SaveMap::Request& request, SaveMap::Response& response) {
   try {
     if (request.folder.empty()) throw IoError("save_map: no folder given");
-    response.message = save(request.folder, request.voxel_size);
+    const Saved saved = save(request.folder, request.voxel_size);
+    response.message = saved.message;
+    response.keyframes = saved.keyframes;
     response.success = true;
-    std::lock_guard<std::mutex> lock(mapping_mutex_);
-    response.keyframes = static_cast<int>(mapping_->keyframes().size());
     ROS_INFO("map_optimization: %s", response.message.c_str());
   } catch (const std::exception& e) {
     response.success = false;
@@ -236,7 +246,7 @@ void MapOptimizationNode::log_loop(const LoopDetection& loop) const {
 }
 
 void MapOptimizationNode::log_localization(const LocalizationStatus& status) {
-  if (status.state == LocalizationState::kLost) diagnostics_.dropped("localization lost");
+  lost_scans_ += status.state == LocalizationState::kLost;
   if (last_state_ && *last_state_ == status.state) return;
   last_state_ = status.state;
   if (status.state == LocalizationState::kTracking) {
@@ -260,6 +270,8 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
   // The mapped motion, without the map frame's jumps: feature_association's motion model.
   if (out_.motion && last_stamp_ && stamp > *last_stamp_) {
     mapped.twist.twist = ros_bridge::motion_to_twist(*out_.motion, (stamp - *last_stamp_).toSec());
+  } else {
+    ros_bridge::mark_no_mapped_motion(mapped);
   }
   publish_shared(mapped_pub_, std::move(mapped));
   tf_broadcaster_.sendTransform(
@@ -284,6 +296,7 @@ void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
     status.add("map", map_folder_);
     const std::string state = last_state_ ? to_string(*last_state_) : "waiting for a scan";
     status.add("localization", state);
+    status.add("scans lost (total)", std::to_string(lost_scans_));
     if (last_state_ == LocalizationState::kLost) {
       status.raise(ros_bridge::HealthLevel::kError, "localization lost");
     }

@@ -59,14 +59,18 @@ class MapOptimizationNode {
   void publish(const ros::Time& stamp);
   void add_diagnostics(ros_bridge::HealthStatus& status) const;
   std::unique_ptr<LidarMapping> make_mapping() const;
-  // Writes the map; returns the response's message (throws IoError when it cannot).
-  std::string save(const std::string& folder, double voxel_size);
+  struct Saved {
+    std::string message;  // the folder and the keyframe count
+    int keyframes = 0;
+  };
+  // Writes the map (throws IoError when it cannot).
+  Saved save(const std::string& folder, double voxel_size);
 
   Config config_;
   std::string map_folder_;               // ~map: localization on this saved map
   std::vector<Keyframe> map_keyframes_;  // ... its keyframes, to start over from
-  Eigen::Isometry3d initial_pose_ = Eigen::Isometry3d::Identity();
-  std::string save_on_exit_;          // ~save_map_on_exit
+  Eigen::Isometry3d initial_pose_ = Eigen::Isometry3d::Identity();  // ~initial_pose, /initialpose
+  std::string save_on_exit_;                                        // ~save_map_on_exit
   mutable std::mutex mapping_mutex_;  // the mapping, between scans and save_map
   std::unique_ptr<LidarMapping> mapping_;
   MappingOutput out_;
@@ -76,6 +80,7 @@ class MapOptimizationNode {
   std::vector<ros::Time> stamps_;  // of every mapped scan, for the path
   std::optional<ros::Time> last_stamp_;
   std::optional<LocalizationState> last_state_;
+  long lost_scans_ = 0;  // localization: scans mapped while lost
   ros_bridge::ScanPairing pairing_;
   long pairing_dropped_ = 0;
   ros_bridge::Throttle surround_throttle_, path_throttle_;  // both grow with the map: throttled

@@ -30,6 +30,9 @@ class BagSequence : public ScanSequence {
     const rosbag::MessageInstance& message = *position_;
     const auto cloud = message.instantiate<sensor_msgs::PointCloud2>();
     const std::string data_type = message.getDataType();
+    // The cloud's own stamp when it has one, else when the bag recorded it.
+    last_stamp_ = cloud && !cloud->header.stamp.isZero() ? cloud->header.stamp.toSec()
+                                                         : message.getTime().toSec();
     // Moved on first: a scan that cannot be read is skipped when the caller goes on.
     ++position_;
     if (!cloud) {

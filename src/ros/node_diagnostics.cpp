@@ -78,17 +78,18 @@ HealthStatus ScanHealth::close_period(double now_s) {
   status.add("scans missing from the input (total)", std::to_string(stamps_.missing()));
   status.add("time jumps back (total)", std::to_string(stamps_.backward_jumps()));
 
-  if (!last_received_s_) {
+  long dropped = 0;
+  for (const auto& [reason, count] : dropped_in_period_)
+    dropped += count;
+  if (processed_ == 0 && (received_ > 0 || dropped > 0)) {
+    // Scans came (or parts of scans that never made a whole one) and none was processed.
+    status.raise(HealthLevel::kError, "every scan dropped");
+  } else if (!last_received_s_) {
     status.message = "waiting for the first scan";
   } else if (now_s - *last_received_s_ > kSilenceWarning) {
     status.raise(HealthLevel::kWarn,
                  "no scan for " + number(now_s - *last_received_s_, "%.0f") + " s");
-  } else if (received_ > 0 && processed_ == 0) {
-    status.raise(HealthLevel::kError, "every scan dropped");
   }
-  long dropped = 0;
-  for (const auto& [reason, count] : dropped_in_period_)
-    dropped += count;
   if (dropped > 0 && processed_ > 0) {
     status.raise(HealthLevel::kWarn, std::to_string(dropped) + " scans dropped");
   }

@@ -88,4 +88,12 @@ nav_msgs::Path path_to_ros(const std::vector<Eigen::Isometry3d>& poses,
   return path;
 }
 
+void mark_no_mapped_motion(nav_msgs::Odometry& msg) {
+  msg.twist.covariance[0] = -1.0;
+}
+
+bool has_mapped_motion(const nav_msgs::Odometry& msg) {
+  return msg.twist.covariance[0] >= 0.0;
+}
+
 }  // namespace adaptive_lego_loam::ros_bridge

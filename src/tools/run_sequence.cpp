@@ -181,12 +181,14 @@ nlohmann::json statistics(std::vector<double> values) {
           {"max", values.back()}};
 }
 
-void write_poses(const Options& options, const Pipeline& pipeline, const Outputs& outputs) {
+// The pose files, staged in `batch` (put in place with the other outputs).
+void write_poses(const Options& options, const Pipeline& pipeline, const Outputs& outputs,
+                 AtomicBatch& batch) {
   const std::vector<Eigen::Isometry3d> poses = pipeline.trajectory();
-  write_atomically(outputs.path("poses_kitti.txt"),
-                   [&](const std::string& path) { write_kitti_poses(path, poses); });
-  write_atomically(outputs.path("poses_tum.txt"),
-                   [&](const std::string& path) { write_tum_poses(path, outputs.stamps, poses); });
+  batch.add(outputs.path("poses_kitti.txt"),
+            [&](const std::string& path) { write_kitti_poses(path, poses); });
+  batch.add(outputs.path("poses_tum.txt"),
+            [&](const std::string& path) { write_tum_poses(path, outputs.stamps, poses); });
   // KITTI's ground truth is in the left camera's frame: with a calib.txt beside the scans, also
   // write the poses there (camera pose = Tr * lidar pose * Tr^-1).
   if (const auto calib = kitti_calib_beside(options.input)) {
@@ -194,8 +196,8 @@ void write_poses(const Options& options, const Pipeline& pipeline, const Outputs
     std::vector<Eigen::Isometry3d> camera;
     for (const auto& pose : poses)
       camera.push_back(tr * pose * tr.inverse());
-    write_atomically(outputs.path("poses_camera.txt"),
-                     [&](const std::string& path) { write_kitti_poses(path, camera); });
+    batch.add(outputs.path("poses_camera.txt"),
+              [&](const std::string& path) { write_kitti_poses(path, camera); });
   }
 }
 
@@ -231,10 +233,16 @@ struct LocalizationCounts {
 };
 
 // The stand-in for a scan that could not be read (--skip-bad-scans): no points, so the pipeline
-// predicts its pose and the poses stay one a frame.
-Scan skipped_scan(double last_stamp, double scan_period) {
+// predicts its pose and the poses stay one a frame. Its stamp is the one the sequence knows for
+// it (times.txt, the bag), else a period after the last scan's.
+Scan skipped_scan(const ScanSequence& sequence, std::optional<double> last_stamp,
+                  double scan_period) {
   Scan scan;
-  scan.stamp = last_stamp + scan_period;
+  if (sequence.last_stamp()) {
+    scan.stamp = *sequence.last_stamp();
+  } else if (last_stamp) {
+    scan.stamp = *last_stamp + scan_period;
+  }
   return scan;
 }
 
@@ -246,6 +254,8 @@ int run(const Options& options) {
   } else if (options.adaptive) {
     config.ambient.mode = Beta0Mode::kAdaptive;
   }
+  // A map folder that cannot take the map stops the run now, not after it.
+  if (!options.save_map.empty()) check_map_folder(options.save_map);
   std::unique_ptr<ScanSequence> sequence = open_sequence(options);
   std::unique_ptr<Pipeline> pipeline = make_pipeline(options, config);
   Outputs outputs(options.output);
@@ -262,7 +272,7 @@ int run(const Options& options) {
   int frames = 0, empty_scans = 0, motion_gated_scans = 0, skipped_scans = 0;
   ScanStamps stamps(config.sensor.scan_period);
   LocalizationCounts localization;
-  double last_stamp = 0.0;
+  std::optional<double> last_stamp;
   std::string failure;
   try {
     while (options.max_frames < 0 || frames < options.max_frames) {
@@ -273,7 +283,7 @@ int run(const Options& options) {
         if (!options.skip_bad_scans) throw;
         std::fprintf(stderr, "\nrun_sequence: warning: frame %d skipped: %s\n", frames, e.what());
         ++skipped_scans;
-        scan = skipped_scan(last_stamp, config.sensor.scan_period);
+        scan = skipped_scan(*sequence, last_stamp, config.sensor.scan_period);
       }
       if (!scan) break;
       stamps.add(scan->stamp);
@@ -309,13 +319,16 @@ int run(const Options& options) {
     }
   }
   const double wall_s = wall.elapsed_ms() / 1000.0;
-  write_poses(options, *pipeline, outputs);
+  // The map first: when it cannot be saved, no output of this run takes the place of an earlier
+  // one's. The files follow together once all are written.
   if (!options.save_map.empty()) {
     const MapDescription description{fs::absolute(options.config).string(), config.sensor.name,
                                      "run_sequence", frames};
     save_map(options.save_map, pipeline->keyframes(), description, config);
     std::fprintf(stderr, "run_sequence: map saved in %s\n", options.save_map.c_str());
   }
+  AtomicBatch batch;
+  write_poses(options, *pipeline, outputs, batch);
 
   nlohmann::json summary;
   summary["input"] = options.input;
@@ -358,12 +371,13 @@ int run(const Options& options) {
   for (const auto& [stage, values] : outputs.stage_ms)
     summary["stage_ms"][stage] = statistics(values);
   summary["peak_rss_mb"] = peak_resident_memory_mb();
-  outputs.commit(!options.localize.empty());
-  write_atomically(outputs.path("summary.json"), [&](const std::string& path) {
+  batch.add(outputs.path("summary.json"), [&](const std::string& path) {
     std::ofstream file(path);
     file << summary.dump(2) << "\n";
     if (!file) throw IoError(path + ": cannot write");
   });
+  outputs.commit(!options.localize.empty());
+  batch.commit();
 
   const nlohmann::json& frame_ms = summary["frame_ms"];
   std::printf(

@@ -44,12 +44,14 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr int kMalformedAfterScan = 2;  // the bad clouds go between scans 2 and 3
+constexpr double kReplayShift = 10.0;   // s: the replayed scans are this much older
 
 // What the checker saw on the graph's outputs.
 struct Recording {
   std::map<ros::Time, Eigen::Isometry3d> mapped, integrated;
   std::map<ros::Time, DegenerationState> degeneration;
   std::vector<std::string> image_projection_warnings;
+  std::vector<std::string> time_jump_warnings;  // "time went back", from any stage
   // The newest status of each name on /diagnostics ("image_projection: scans", ...).
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;
   std::optional<Eigen::Isometry3d> tf_map_to_sensor;  // at the last scan's stamp
@@ -66,6 +68,7 @@ Bag write_and_read_bag(const std::string& dir) {
   options.input = std::string(TEST_DATA_DIR) + "/kitti_seq07";
   options.output = dir + "/kitti07.bag";
   options.config_path = std::string(CONFIG_DIR) + "/kitti.yaml";
+  options.start_time = 2 * kReplayShift;  // room to replay the scans earlier (stamps stay > 0)
   ros_bridge::write_kitti_bag(options);
   rosbag::Bag bag(options.output, rosbag::bagmode::Read);
   Bag contents;
@@ -161,8 +164,12 @@ class Player {
     // Matched by the message's prefix: a nodelet logs under its manager's node name.
     subs_.push_back(nh_.subscribe<rosgraph_msgs::Log>(
         "/rosout", 100, [this](const rosgraph_msgs::LogConstPtr& m) {
-          if (m->msg.rfind("image_projection:", 0) == 0 && m->level == rosgraph_msgs::Log::WARN) {
+          if (m->level != rosgraph_msgs::Log::WARN) return;
+          if (m->msg.rfind("image_projection:", 0) == 0) {
             recording_.image_projection_warnings.push_back(m->msg);
+          }
+          if (m->msg.find("time went back") != std::string::npos) {
+            recording_.time_jump_warnings.push_back(m->msg);
           }
         }));
     subs_.push_back(nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
@@ -288,6 +295,13 @@ class Graph : public ::testing::Test {
     std::ofstream(dir_ / "a_file") << "not a folder\n";
     failed_save_map_ = call_save_map((dir_ / "a_file" / "map").string());
     save_map_after_failure_ = call_save_map((dir_ / "map_again").string());
+    // A bag played again: the first two scans, 10 s earlier than before.
+    for (int i = 0; i < 2; ++i) {
+      sensor_msgs::PointCloud2 cloud = bag_.clouds[i];
+      cloud.header.stamp -= ros::Duration(kReplayShift);
+      replayed_ &= player.play(cloud);
+    }
+    wait_for([] { return recording_.time_jump_warnings.size() >= 4; }, 5.0);
   }
 
   static std::optional<SaveMap::Response> call_save_map(const std::string& folder) {
@@ -324,13 +338,14 @@ class Graph : public ::testing::Test {
   static inline bool saw_nan_warning_ = false;
   static inline bool saw_dropped_in_diagnostics_ = false;
   static inline bool saw_saved_keyframes_in_diagnostics_ = false;
+  static inline bool replayed_ = true;
   static inline std::optional<SaveMap::Response> save_map_, failed_save_map_,
       save_map_after_failure_;
 };
 
 TEST_F(Graph, EveryScanIsMappedOnce) {
   EXPECT_TRUE(recording_.every_scan_mapped);
-  ASSERT_EQ(recording_.mapped.size(), bag_.clouds.size());
+  ASSERT_EQ(recording_.mapped.size(), bag_.clouds.size() + 2) << "the scans and two replayed";
   for (const auto& cloud : bag_.clouds)
     EXPECT_EQ(recording_.mapped.count(cloud.header.stamp), 1u) << cloud.header.stamp;
 }
@@ -359,6 +374,24 @@ TEST_F(Graph, SamePosesAsTheOfflinePipeline) {
   RecordProperty("largest_translation_difference_m", text);
 }
 
+TEST_F(Graph, TimeGoingBackStartsEveryStageOverWithAWarning) {
+  EXPECT_TRUE(replayed_) << "the replayed scans were not mapped";
+  for (const char* stage :
+       {"image_projection", "feature_association", "map_optimization", "transform_fusion"}) {
+    bool warned = false;
+    for (const std::string& line : recording_.time_jump_warnings)
+      warned |= line.rfind(std::string(stage) + ": time went back", 0) == 0;
+    EXPECT_TRUE(warned) << stage;
+  }
+  // As a fresh start on the same scans: the offline pipeline's poses.
+  for (int i = 0; i < 2; ++i) {
+    const ros::Time stamp = bag_.clouds[i].header.stamp - ros::Duration(kReplayShift);
+    const auto it = recording_.mapped.find(stamp);
+    ASSERT_NE(it, recording_.mapped.end()) << "replayed scan " << i;
+    EXPECT_LT((it->second.translation() - offline_[i].translation()).norm(), 1e-6) << i;
+  }
+}
+
 TEST_F(Graph, MapOptimizationPairsTheDegenerationOnlyWithThePrior) {
   // ~mapping_node: the node that registers map_optimization's topics (a nodelet's manager).
   const std::string mapping_node =
@@ -369,7 +402,7 @@ TEST_F(Graph, MapOptimizationPairsTheDegenerationOnlyWithThePrior) {
 }
 
 TEST_F(Graph, DegenerationHasValidMuForEveryScan) {
-  ASSERT_EQ(recording_.degeneration.size(), bag_.clouds.size());
+  ASSERT_EQ(recording_.degeneration.size(), bag_.clouds.size() + 2) << "and two replayed";
   for (const auto& [stamp, msg] : recording_.degeneration) {
     EXPECT_TRUE(msg.valid) << stamp;
     EXPECT_GE(msg.mu, 0.0) << stamp;
@@ -387,8 +420,9 @@ TEST_F(Graph, MalformedCloudsAreLoggedDroppedAndTheNextScanMapped) {
   for (const std::string& line : recording_.image_projection_warnings)
     names_topic |= line.find("/velodyne_points") != std::string::npos;
   EXPECT_TRUE(names_topic);
-  // No output for the bad clouds; both scans after them mapped.
-  EXPECT_EQ(recording_.degeneration.size(), bag_.clouds.size());
+  // No output for the bad clouds (every degeneration is a scan's); both scans after them mapped.
+  for (const auto& [stamp, msg] : recording_.degeneration)
+    EXPECT_EQ(recording_.mapped.count(stamp), 1u) << stamp;
   for (std::size_t i = kMalformedAfterScan + 1; i < bag_.clouds.size(); ++i)
     EXPECT_EQ(recording_.mapped.count(bag_.clouds[i].header.stamp), 1u) << "scan " << i;
 }
@@ -447,7 +481,7 @@ TEST_F(Graph, TfChainMapOdomSensorGivesTheMappedPose) {
   EXPECT_LT((recording_.tf_map_to_sensor->translation() - mapped.translation()).norm(), 1e-6);
   EXPECT_LT(angle_between(*recording_.tf_map_to_sensor, mapped), 1e-6);
   // transform_fusion's output for every scan, close to the mapped pose.
-  ASSERT_EQ(recording_.integrated.size(), bag_.clouds.size());
+  ASSERT_EQ(recording_.integrated.size(), bag_.clouds.size() + 2) << "and two replayed";
   for (const auto& [stamp, pose] : recording_.integrated)
     EXPECT_LT((pose.translation() - recording_.mapped.at(stamp).translation()).norm(), 0.05);
 }

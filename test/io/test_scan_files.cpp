@@ -134,6 +134,21 @@ TEST(ScanFiles, AsciiPcdWithIntegerRingAndNan) {
   EXPECT_EQ(scan.points[1].ring, 15);
 }
 
+TEST(ScanFiles, PcdFieldOfAnUnreadableTypeIsPassedOverUnlessItIsACoordinate) {
+  // 8-byte integer stamps (as some drivers write them): the scan is read without a time field.
+  const Scan scan = parse_pcd(
+      "FIELDS x y z timestamp\nSIZE 4 4 4 8\nTYPE F F F U\nWIDTH 1\nDATA ascii\n"
+      "1 2 3 1700000000000000000\n",
+      "scan.pcd");
+  ASSERT_EQ(scan.points.size(), 1u);
+  EXPECT_FALSE(scan.has_time);
+  EXPECT_FLOAT_EQ(scan.points[0].z, 3.f);
+  const std::string error =
+      pcd_error("FIELDS x y z\nSIZE 4 4 8\nTYPE F F I\nWIDTH 1\nDATA ascii\n1 2 3\n");
+  EXPECT_NE(error.find("scan.pcd: field 'z' has a type that cannot be read"), std::string::npos)
+      << error;
+}
+
 TEST(ScanFiles, PcdHeaderErrorsNameTheLine) {
   EXPECT_NE(pcd_error("VERSION 0.7\nFIELDS x y z\nSIZE 4 3 4\n")
                 .find("scan.pcd:3: SIZE 3: "

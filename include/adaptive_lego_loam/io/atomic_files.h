@@ -6,6 +6,8 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace adaptive_lego_loam {
 
@@ -34,6 +36,26 @@ class AtomicFile {
  private:
   std::string path_, temporary_;
   std::ofstream stream_;
+  bool committed_ = false;
+};
+
+// Files written whole now and put in place together later: a run writes each as it finishes and
+// commits them with its streamed files once everything succeeded. Destroyed uncommitted, it
+// removes the temporaries.
+class AtomicBatch {
+ public:
+  AtomicBatch() = default;
+  ~AtomicBatch();
+  AtomicBatch(const AtomicBatch&) = delete;
+  AtomicBatch& operator=(const AtomicBatch&) = delete;
+
+  // `write` fills the temporary path it is given; what it throws goes on (nothing is kept).
+  void add(const std::string& path, const std::function<void(const std::string& temporary)>& write);
+  // Renames every file into its place, in the order added; throws IoError when one fails.
+  void commit();
+
+ private:
+  std::vector<std::pair<std::string, std::string>> files_;  // path, temporary
   bool committed_ = false;
 };
 

@@ -35,8 +35,13 @@ struct SavedMap {
   std::vector<Keyframe> keyframes;  // index = position, poses in the map frame
 };
 
+// Throws IoError unless `dir` is free for a map: missing, an empty folder, or a saved map (which
+// a new save replaces). Anything else there is never replaced.
+void check_map_folder(const std::string& dir);
+
 // Writes the map folder at `dir` atomically (io/atomic_files.h): a failed save leaves what was
-// there. `global_voxel` <= 0 takes config.saved_map.voxel_size. Throws IoError naming the file.
+// there. `global_voxel` 0 takes config.saved_map.voxel_size. Throws IoError naming the folder or
+// file: a bad voxel size, `dir` not free (check_map_folder), a write that failed.
 void save_map(const std::string& dir, const std::vector<Keyframe>& keyframes,
               const MapDescription& description, const Config& config, double global_voxel = 0.0);
 

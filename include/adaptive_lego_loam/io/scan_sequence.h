@@ -20,6 +20,11 @@ class ScanSequence {
   // Number of scans, when known in advance (-1 otherwise).
   virtual int size() const = 0;
   virtual std::string describe() const = 0;
+  // The stamp of the scan next() last tried, read or not (nothing before the first call).
+  std::optional<double> last_stamp() const { return last_stamp_; }
+
+ protected:
+  std::optional<double> last_stamp_;
 };
 
 // Scan files of a folder, sorted by name; stamps from `times_file` when given (one per scan),

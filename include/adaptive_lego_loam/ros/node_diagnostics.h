@@ -5,7 +5,8 @@
 // or an earlier stage fell behind, or a queue overflowed), and the node's own values.
 //
 // Levels, over the last period:
-//   ERROR  scans arrived but none was processed, or the node says so (localization lost);
+//   ERROR  scans (or parts of scans) arrived but none was processed, or the node says so
+//          (localization lost);
 //   WARN   scans were dropped or went missing, the mean frame took longer than the sensor period,
 //          or no scan came for 2 s after the first;
 //   OK     otherwise (also before the first scan).

@@ -30,6 +30,11 @@ geometry_msgs::Twist motion_to_twist(const Eigen::Isometry3d& motion, double dt)
 // Throws IoError naming `source` on a non-finite number.
 Eigen::Isometry3d motion_from_twist(const geometry_msgs::Twist& twist, double dt,
                                     const std::string& source);
+// aft_mapped_to_init says whether its twist holds the mapped motion (there is none on the first
+// scan after a start) in the first element of the twist covariance, -1 meaning "no estimate" as
+// in sensor_msgs.
+void mark_no_mapped_motion(nav_msgs::Odometry& msg);
+bool has_mapped_motion(const nav_msgs::Odometry& msg);
 
 geometry_msgs::TransformStamped transform_to_ros(const Eigen::Isometry3d& pose,
                                                  const std_msgs::Header& header,

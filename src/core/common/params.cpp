@@ -273,7 +273,7 @@ void read_localization(SectionReader& in, LocalizationParams& l) {
 }
 
 void read_saved_map(SectionReader& in, SavedMapParams& m) {
-  in.number("voxel_size", m.voxel_size, 0.0, 100.0);
+  in.number("voxel_size", m.voxel_size, SavedMapParams::kMinVoxel, SavedMapParams::kMaxVoxel);
   in.reject_unknown_keys();
 }
 

@@ -37,6 +37,10 @@ LidarMapping::LidarMapping(const Config& config, std::vector<Keyframe> map,
                            const Eigen::Isometry3d& start)
     : LidarMapping(localization_config(config)) {
   if (map.empty()) throw std::invalid_argument("localization: the map has no keyframes");
+  if (!config.mapping.enabled) {
+    throw std::invalid_argument(config.source +
+                                ": mapping.enabled is false: localization needs scan-to-map");
+  }
   for (int i = 0; i < static_cast<int>(map.size()); ++i) {
     if (map[i].index != i) {
       throw std::invalid_argument("localization: map keyframe " + std::to_string(i) +

@@ -75,6 +75,17 @@ TEST(Params, UnknownKeyAndSectionAreErrors) {
             std::string::npos);
 }
 
+TEST(Params, MissingKeysTakeTheDocumentedDefaultsButTheSensorSectionIsRequired) {
+  const Config config =
+      parse_config(std::string(kMinimal) + "mapping:\n  keyframe_distance: 2.0\n", "partial.yaml");
+  EXPECT_EQ(config.mapping.keyframe_distance, 2.0);
+  EXPECT_EQ(config.mapping.keyframe_angle_deg, MappingParams().keyframe_angle_deg);
+  EXPECT_EQ(config.loop_closure.min_inlier_ratio, LoopClosureParams().min_inlier_ratio);
+  EXPECT_EQ(config.saved_map.voxel_size, SavedMapParams().voxel_size);
+  EXPECT_NE(error_of("mapping:\n  keyframe_distance: 2.0\n").find("sensor: missing section"),
+            std::string::npos);
+}
+
 TEST(Params, BeamTableMustMatchRowsAndAscend) {
   EXPECT_NE(error_of("sensor:\n  rows: 3\n  beam_angles_deg: [-2, 0]\n").find("one per row"),
             std::string::npos);

@@ -247,7 +247,8 @@ struct LocalizationParams {
 
 // The map a run saves (run_sequence --save-map, map_optimization's save_map service).
 struct SavedMapParams {
-  double voxel_size = 0.2;  // m: leaf of the saved global map
+  static constexpr double kMinVoxel = 0.01, kMaxVoxel = 10.0;  // m: the leaves a save may use
+  double voxel_size = 0.2;                                     // m: leaf of the saved global map
 };
 
 // Settings of the clustering benchmark tool (segmentation_bench), the same for every method.

@@ -1,0 +1,106 @@
+// run_sequence's outputs: a run that fails leaves an earlier run's files as they were; with
+// --skip-bad-scans an unreadable scan is skipped and counted; a map folder that cannot take the
+// map stops the run before it starts.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "support/run_command.h"
+#include "support/temp_files.h"
+
+using adaptive_lego_loam::test::run_command;
+using adaptive_lego_loam::test::temp_path;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kConfig = std::string(CONFIG_DIR) + "/kitti.yaml";
+
+std::string run_sequence(const std::string& arguments) {
+  return std::string(BIN_DIR) + "/run_sequence --config " + kConfig + " " + arguments;
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// A copy of KITTI 07 frames 0-4 whose scan `broken` is cut to 17 bytes (no whole point).
+fs::path sequence_with_broken_scan(const std::string& name, int broken) {
+  const fs::path dir = temp_path(name);
+  fs::remove_all(dir);
+  fs::copy(std::string(TEST_DATA_DIR) + "/kitti_seq07", dir, fs::copy_options::recursive);
+  char file[32];
+  std::snprintf(file, sizeof(file), "velodyne/%010d.bin", broken);
+  fs::resize_file(dir / file, 17);
+  return dir;
+}
+
+}  // namespace
+
+TEST(RunSequenceOutputs, AFailedRunLeavesTheEarlierRunsFiles) {
+  const fs::path out = temp_path("outputs_kept");
+  fs::remove_all(out);
+  const std::string input = std::string(TEST_DATA_DIR) + "/kitti_seq07";
+  const auto [good_status, good_output] =
+      run_command(run_sequence("--input " + input + " --output " + out.string()));
+  ASSERT_EQ(good_status, 0) << good_output;
+  const std::string poses = read_file(out / "poses_kitti.txt");
+  const std::string summary = read_file(out / "summary.json");
+  ASSERT_FALSE(poses.empty());
+
+  const fs::path broken = sequence_with_broken_scan("broken_seq", 3);
+  const auto [status, output] =
+      run_command(run_sequence("--input " + broken.string() + " --output " + out.string()));
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find("0000000003.bin"), std::string::npos) << output;
+  EXPECT_NE(output.find("as they were"), std::string::npos) << output;
+  EXPECT_EQ(read_file(out / "poses_kitti.txt"), poses);
+  EXPECT_EQ(read_file(out / "summary.json"), summary);
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos)
+        << "a temporary left behind: " << entry.path();
+}
+
+TEST(RunSequenceOutputs, SkipBadScansPredictsTheScanAndCountsIt) {
+  const fs::path broken = sequence_with_broken_scan("skip_seq", 2);
+  const fs::path out = temp_path("outputs_skip");
+  fs::remove_all(out);
+  const auto [status, output] = run_command(run_sequence(
+      "--input " + broken.string() + " --output " + out.string() + " --skip-bad-scans"));
+  ASSERT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("frame 2 skipped"), std::string::npos) << output;
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary["skipped_scans"], 1);
+  EXPECT_EQ(summary["frames"], 5);
+  EXPECT_EQ(summary["input_stamps"]["missing_scans"], 0) << "the skipped scan keeps its stamp";
+  std::istringstream poses(read_file(out / "poses_kitti.txt"));
+  int lines = 0;
+  for (std::string line; std::getline(poses, line);)
+    ++lines;
+  EXPECT_EQ(lines, 5) << "one pose a frame, the skipped one predicted";
+}
+
+TEST(RunSequenceOutputs, AMapFolderThatHoldsSomethingElseStopsTheRunFirst) {
+  const fs::path folder = temp_path("not_a_map");
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  std::ofstream(folder / "notes.txt") << "keep me\n";
+  const fs::path out = temp_path("outputs_map");
+  fs::remove_all(out);
+  const auto [status, output] =
+      run_command(run_sequence("--input " + std::string(TEST_DATA_DIR) + "/kitti_seq07 --output " +
+                               out.string() + " --save-map " + folder.string()));
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find(folder.string()), std::string::npos) << output;
+  EXPECT_NE(output.find("no map.yaml"), std::string::npos) << output;
+  EXPECT_EQ(read_file(folder / "notes.txt"), "keep me\n");
+  EXPECT_FALSE(fs::exists(out / "poses_kitti.txt")) << "the run should not have started";
+}
