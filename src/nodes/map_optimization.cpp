@@ -308,6 +308,7 @@ void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
                                                      std::to_string(loops.radius_candidates));
   status.add("loops verified", std::to_string(loops.verified));
   status.add("loops rejected", std::to_string(loops.rejected));
+  status.add("loops beyond the drift bound", std::to_string(loops.beyond_drift));
   status.add("loops unconfirmed", std::to_string(loops.unconfirmed));
   status.add("loops removed", std::to_string(loops.removed));
 }

@@ -29,6 +29,7 @@ void emit_scenario(YAML::Emitter& out, const ScenarioParams& p) {
   out << YAML::Key << "walls_per_100m" << YAML::Value << p.walls_per_100m;
   out << YAML::Key << "fences_share" << YAML::Value << p.fences_share;
   out << YAML::Key << "house_share" << YAML::Value << p.house_share;
+  out << YAML::Key << "identical_houses" << YAML::Value << p.identical_houses;
   out << YAML::Key << "junctions_per_km" << YAML::Value << p.junctions_per_km;
   out << YAML::Key << "guard_rails" << YAML::Value << p.guard_rails;
   out << YAML::Key << "tunnel" << YAML::Value << p.tunnel;

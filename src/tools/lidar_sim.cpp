@@ -44,6 +44,7 @@ struct Options {
   std::optional<std::string> motion_distortion, rough_road;
   std::optional<double> speed, leaf_jitter;
   double sensor_height = 1.73;
+  bool identical_houses = false;
   bool overwrite = false;
 };
 
@@ -68,6 +69,13 @@ SceneRequest make_request(const Options& o, const SensorParams& sensor) {
   request.scenario = default_scenario(parse_scenario(o.scenario));
   if (o.speed) request.scenario.cruise_speed_mps = *o.speed;
   if (o.leaf_jitter) request.scenario.leaf_jitter_m = *o.leaf_jitter;
+  if (o.identical_houses) {
+    // Every place alike: the same house on every lot, no side streets, no trees or bushes.
+    request.scenario.identical_houses = true;
+    request.scenario.junctions_per_km = 0.0;
+    request.scenario.trees_per_100m = 0.0;
+    request.scenario.bushes_per_100m = 0.0;
+  }
   request.scenario.rough_road = on_off(o.rough_road, request.scenario.rough_road);
   request.seed = o.seed;
   request.scene_seed = o.scene_seed;
@@ -268,6 +276,9 @@ int main(int argc, char** argv) {
   app.add_option("--sensor-height", o.sensor_height,
                  "sensor height above the road, m (default 1.73)")
       ->check(CLI::Range(0.2, 5.0));
+  app.add_flag("--identical-houses", o.identical_houses,
+               "urban or loop: the same house on every lot, no side streets, trees or bushes (a "
+               "street where every place looks alike)");
   app.add_flag("--overwrite", o.overwrite, "replace a sequence already in --output");
   if (const auto status = tools::parse_command_line(app, argc, argv, "lidar_sim")) return *status;
   if (!o.trajectory_times.empty() && o.trajectory.empty()) {

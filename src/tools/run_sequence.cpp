@@ -350,6 +350,7 @@ int run(const Options& options) {
                              {"radius_candidates", loops.radius_candidates},
                              {"verified", loops.verified},
                              {"rejected", loops.rejected},
+                             {"beyond_drift_bound", loops.beyond_drift},
                              {"unconfirmed", loops.unconfirmed},
                              {"closed", loops.closed},
                              {"removed", loops.removed}};

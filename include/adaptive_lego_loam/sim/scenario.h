@@ -48,6 +48,9 @@ struct ScenarioParams {
   double walls_per_100m = 0.0;
   double fences_share = 0.5;      // of gaps between buildings closed by a fence
   double house_share = 0.5;       // of building lots with a detached house rather than a block
+  // Every lot the same detached house at the same spacing, without fences or garden plants: a
+  // street where every place looks alike (place recognition must not take one for another).
+  bool identical_houses = false;
   double junctions_per_km = 0.0;  // side streets branching off (urban)
   bool guard_rails = false;
   bool tunnel = false;

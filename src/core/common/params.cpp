@@ -298,6 +298,8 @@ void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
   in.number("consistency_window", l.consistency_window, 1, 100000);
   in.number("consistency_translation", l.consistency_translation, 0.0, 100.0);
   in.number("consistency_rotation_deg", l.consistency_rotation_deg, 0.0, 180.0);
+  in.number("max_drift_fraction", l.max_drift_fraction, 0.0, 1.0);
+  in.number("max_drift_offset", l.max_drift_offset, 0.0, 10000.0);
   in.number("max_loop_residual", l.max_loop_residual, 0.1, 1.0e6);
   in.number("min_closure_interval", l.min_closure_interval, 0.0, 1.0e6);
   in.number("voxel_size", l.voxel_size, 0.0, 10.0);

@@ -107,8 +107,21 @@ const char* to_string(LoopStatus status) {
       return "ICP did not converge";
     case LoopStatus::kTooFewInliers:
       return "too few inliers";
+    case LoopStatus::kBeyondDrift:
+      return "beyond the drift bound";
   }
   return "unknown";
+}
+
+bool within_drift_bound(const std::vector<Keyframe>& keyframes, const LoopDetection& loop,
+                        const LoopClosureParams& params) {
+  double driven = 0.0;
+  for (int i = loop.matched_index + 1; i <= loop.current_index; ++i)
+    driven += (keyframes.at(i).pose.translation() - keyframes.at(i - 1).pose.translation()).norm();
+  const Eigen::Isometry3d odometry =
+      keyframes.at(loop.matched_index).pose.inverse() * keyframes.at(loop.current_index).pose;
+  const double correction = (odometry.inverse() * loop.relative_pose).translation().norm();
+  return correction <= params.max_drift_fraction * driven + params.max_drift_offset;
 }
 
 const char* to_string(CandidateSource source) {

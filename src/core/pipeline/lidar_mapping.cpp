@@ -90,13 +90,16 @@ std::optional<LoopDetection> LidarMapping::advance_loop_closure(double stamp, bo
   if (new_keyframe && !loop_closure_running()) start_loop_closure(stamp);
   if (loop_job_) {
     if (!loop_job_->step()) return std::nullopt;
-    const LoopDetection detection = loop_job_->detection();
+    LoopDetection detection = loop_job_->detection();
     loop_job_.reset();
-    if (detection.accepted()) {
+    if (!detection.accepted()) {
+      ++counts_.rejected;
+    } else if (!within_drift_bound(keyframes_, detection, loop_params_)) {
+      ++counts_.beyond_drift;
+      detection.status = LoopStatus::kBeyondDrift;
+    } else {
       ++counts_.verified;
       confirm(detection);
-    } else {
-      ++counts_.rejected;
     }
     return detection;
   }

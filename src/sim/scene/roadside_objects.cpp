@@ -11,10 +11,38 @@
 
 namespace adaptive_lego_loam::sim {
 
+namespace {
+
+// One house of an identical_houses street at `s` along the road; returns where the next lot
+// starts.
+double add_identical_house(Layout& l, double side, double s) {
+  constexpr double kFrontage = 10.0, kDepth = 10.0, kHeight = 7.0, kSetback = 5.0, kGap = 6.0;
+  const ScenarioParams& p = l.p;
+  const double clearance = p.road_half_width + p.sidewalk_width + 0.3;
+  const Path::Frame f = l.path.at(s + 0.5 * kFrontage);
+  const Eigen::Vector2d centre =
+      (f.position + side * (clearance + kSetback + 0.5 * kDepth) * f.left).head<2>();
+  if (!l.claim(centre, f.heading, Eigen::Vector2d(0.5 * kFrontage, 0.5 * kDepth), clearance)) {
+    return s + 4.0;
+  }
+  const Eigen::Vector3f base(centre.x(), centre.y(), l.terrain.height(centre) - 0.5);
+  const uint32_t surface =
+      l.world.add_surface(SemanticClass::kBuilding, l.world.new_instance(), 0.45f);
+  add_building(l.world.tile_at(base), yaw_pose(base, static_cast<float>(f.heading)),
+               Eigen::Vector3f(kFrontage, kDepth, kHeight + 0.5), 0.0f, surface);
+  return s + kFrontage + kGap;
+}
+
+}  // namespace
+
 void add_buildings(Layout& l, double side) {
   const ScenarioParams& p = l.p;
   const double clearance = p.road_half_width + p.sidewalk_width + 0.3;
   for (double s = l.start + l.rng.uniform(0.0, 10.0); s < l.length();) {
+    if (p.identical_houses) {
+      s = add_identical_house(l, side, s);
+      continue;
+    }
     const bool house = l.rng.chance(p.house_share);
     double frontage, depth, height, setback, yaw_offset;
     if (house) {

@@ -264,3 +264,33 @@ TEST(LoopClosure, JobWithoutCandidateOrPointsIsDoneAtOnce) {
   EXPECT_EQ(too_few.detection().matched_index, 0);
   EXPECT_THROW(LoopDetectionJob(empty.keyframes, 40, std::nullopt, params), std::out_of_range);
 }
+
+// A loop that corrects the odometry by drift-sized amounts passes; one that would move the
+// keyframe by hundreds of metres (a look-alike street driven the other way) does not, however
+// well ICP fits it.
+TEST(LoopClosure, DriftBoundKeepsDriftSizedCorrectionsAndRejectsLookAlikes) {
+  std::vector<Keyframe> keyframes(801);
+  for (int i = 0; i < 801; ++i) {
+    keyframes[i].index = i;
+    keyframes[i].pose.translation() = Eigen::Vector3d(i < 400 ? i : 800 - i, 0.0, 0.0);
+  }
+  LoopClosureParams params;  // 5 % of the path between the ends, plus 5 m
+  LoopDetection loop;
+  loop.status = LoopStatus::kAccepted;
+  loop.matched_index = 0;
+  loop.current_index = 800;  // back at the start after 800 m by the odometry
+  // The loop says the keyframe is 30 m from where the odometry put it: 800 m x 5 % + 5 m allows 45.
+  loop.relative_pose.translation() = Eigen::Vector3d(30.0, 0.0, 0.0);
+  EXPECT_TRUE(within_drift_bound(keyframes, loop, params));
+  loop.relative_pose.translation() = Eigen::Vector3d(0.0, 44.0, 0.0);
+  EXPECT_TRUE(within_drift_bound(keyframes, loop, params));
+  loop.relative_pose.translation() = Eigen::Vector3d(0.0, 46.0, 0.0);
+  EXPECT_FALSE(within_drift_bound(keyframes, loop, params));
+  // After only 40 m the same 30 m is no drift: 40 m x 5 % + 5 m allows 7.
+  loop.matched_index = 760;
+  loop.relative_pose = keyframes[760].pose.inverse() * keyframes[800].pose;
+  loop.relative_pose.translation() += Eigen::Vector3d(6.0, 0.0, 0.0);
+  EXPECT_TRUE(within_drift_bound(keyframes, loop, params));
+  loop.relative_pose.translation() += Eigen::Vector3d(24.0, 0.0, 0.0);
+  EXPECT_FALSE(within_drift_bound(keyframes, loop, params));
+}

@@ -196,6 +196,11 @@ struct LoopClosureParams {
   int consistency_window = 30;           // keyframes
   double consistency_translation = 0.5;  // m
   double consistency_rotation_deg = 2.0;
+  // Drift bound: a verified loop may move its keyframe from where the odometry put it by at most
+  // max_drift_fraction of the path driven between its two ends, plus max_drift_offset. A larger
+  // correction is a place that only looks the same (a street of identical houses), not drift.
+  double max_drift_fraction = 0.05;
+  double max_drift_offset = 5.0;  // m
   double max_loop_residual = 10.0;  // sigmas
   // s: after loops entered the pose graph, the next attempt waits this long (a place driven
   // again is closed once, not at every keyframe).

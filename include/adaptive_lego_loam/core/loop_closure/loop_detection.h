@@ -24,6 +24,7 @@ enum class LoopStatus {
   kTooFewPoints,   // the current cloud or the candidate's map is (nearly) empty
   kNotConverged,   // ICP did not converge
   kTooFewInliers,  // ICP converged, but too few points fit the map, or not closely enough
+  kBeyondDrift,    // verified, but it would move the map by more than the odometry can drift
 };
 const char* to_string(LoopStatus status);
 
@@ -78,6 +79,12 @@ LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_in
 // The same with radius_candidate().
 LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
                           const LoopClosureParams& params);
+
+// Whether an accepted loop moves its current keyframe, from where the odometry put it relative to
+// the matched one, by at most max_drift_fraction of the path between them (along the keyframes)
+// plus max_drift_offset: more than odometry drifts is a place that only looks the same.
+bool within_drift_bound(const std::vector<Keyframe>& keyframes, const LoopDetection& loop,
+                        const LoopClosureParams& params);
 
 // detect_loop in bounded steps: the candidate's map a few keyframes at a time
 // (params.map_points_per_scan), its voxel filter, its KD-tree, then params.icp_iterations_per_scan

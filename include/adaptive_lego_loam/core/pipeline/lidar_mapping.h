@@ -46,6 +46,7 @@ struct LoopClosureCounts {
   int radius_candidates = 0;  // ... from the radius search
   int verified = 0;           // accepted by ICP's inliers
   int rejected = 0;           // not accepted
+  int beyond_drift = 0;       // verified, but a larger correction than the odometry can drift
   int unconfirmed = 0;        // verified, but no second loop agreed with it in time
   int closed = 0;             // entered the pose graph
   int removed = 0;            // later removed from it, inconsistent with the rest
