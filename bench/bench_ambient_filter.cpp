@@ -97,10 +97,7 @@ void BM_RangeImageMu(benchmark::State& state) {
 void BM_KdTreeMu(benchmark::State& state) {
   const Config& config = kitti_frame().config;
   const std::vector<ScanPoint> points = non_ground_points(projected());
-  KdTreeNormalParams params;
-  params.radius = config.ambient.normal_depth_threshold;
-  params.min_neighbors = config.ambient.normal_min_neighbors;
-  params.max_range = config.sensor.max_range;
+  const KdTreeNormalParams params = kdtree_normal_params(config);
   std::vector<NormalFeature> normals;
   double mu = 0.0;
   for (auto _ : state) {

@@ -53,10 +53,9 @@ void replace(const std::string& temporary, const std::string& target) {
   throw IoError(path + ": cannot put the new output in place: " + reason);
 }
 
-}  // namespace
-
-void write_atomically(const std::string& path,
-                      const std::function<void(const std::string& temporary)>& write) {
+// Runs `write` on the temporary beside `path` and returns it; removes it when `write` throws.
+std::string write_temporary(const std::string& path,
+                            const std::function<void(const std::string& temporary)>& write) {
   const std::string temporary = temporary_beside(path);
   remove_quietly(temporary);
   try {
@@ -65,7 +64,14 @@ void write_atomically(const std::string& path,
     remove_quietly(temporary);
     throw;
   }
-  replace(temporary, path);
+  return temporary;
+}
+
+}  // namespace
+
+void write_atomically(const std::string& path,
+                      const std::function<void(const std::string& temporary)>& write) {
+  replace(write_temporary(path, write), path);
 }
 
 AtomicFile::AtomicFile(std::string path)
@@ -101,15 +107,7 @@ AtomicBatch::~AtomicBatch() {
 
 void AtomicBatch::add(const std::string& path,
                       const std::function<void(const std::string& temporary)>& write) {
-  const std::string temporary = temporary_beside(path);
-  remove_quietly(temporary);
-  try {
-    write(temporary);
-  } catch (...) {
-    remove_quietly(temporary);
-    throw;
-  }
-  files_.emplace_back(path, temporary);
+  files_.emplace_back(path, write_temporary(path, write));
 }
 
 void AtomicBatch::commit() {

@@ -33,8 +33,7 @@ ImageProjectionNode::ImageProjectionNode(ros::NodeHandle& nh, ros::NodeHandle& p
   marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("degeneration_markers", 1);
   scan_sub_ = nh.subscribe("velodyne_points", queue, &ImageProjectionNode::on_scan, this);
   ROS_INFO("image_projection: %s (%d x %d, %s beta0) on %s", config.source.c_str(),
-           config.sensor.rows, config.sensor.columns,
-           config.ambient.mode == Beta0Mode::kAdaptive ? "adaptive" : "fixed",
+           config.sensor.rows, config.sensor.columns, to_string(config.ambient.mode),
            scan_sub_.getTopic().c_str());
 }
 
@@ -119,7 +118,7 @@ void ImageProjectionNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
   status.add("mu", filtered_.mu);
   status.add("beta0 (deg)", filtered_.beta0_deg);
   status.add("skeleton points", std::to_string(filtered_.skeleton_points));
-  status.add("beta0 mode", config_.ambient.mode == Beta0Mode::kAdaptive ? "adaptive" : "fixed");
+  status.add("beta0 mode", to_string(config_.ambient.mode));
 }
 
 }  // namespace adaptive_lego_loam::nodes

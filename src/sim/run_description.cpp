@@ -7,7 +7,8 @@ namespace {
 
 void emit_scenario(YAML::Emitter& out, const ScenarioParams& p) {
   out << YAML::Key << "scenario" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "name" << YAML::Value << scenario_name(p.kind);
+  out << YAML::Key << "name" << YAML::Value << p.name;
+  out << YAML::Key << "kind" << YAML::Value << kind_name(p.kind);
   out << YAML::Key << "road_half_width_m" << YAML::Value << p.road_half_width;
   out << YAML::Key << "sidewalk_width_m" << YAML::Value << p.sidewalk_width;
   out << YAML::Key << "curb_height_m" << YAML::Value << p.curb_height;
@@ -30,6 +31,7 @@ void emit_scenario(YAML::Emitter& out, const ScenarioParams& p) {
   out << YAML::Key << "fences_share" << YAML::Value << p.fences_share;
   out << YAML::Key << "house_share" << YAML::Value << p.house_share;
   out << YAML::Key << "identical_houses" << YAML::Value << p.identical_houses;
+  out << YAML::Key << "planted_verges" << YAML::Value << p.planted_verges;
   out << YAML::Key << "junctions_per_km" << YAML::Value << p.junctions_per_km;
   out << YAML::Key << "guard_rails" << YAML::Value << p.guard_rails;
   out << YAML::Key << "tunnel" << YAML::Value << p.tunnel;

@@ -4,30 +4,26 @@
 
 namespace adaptive_lego_loam::sim {
 
-const std::vector<std::string>& scenario_names() {
-  static const std::vector<std::string> names = {"urban", "highway", "tunnel", "vegetation",
-                                                 "loop"};
-  return names;
-}
-
-ScenarioKind parse_scenario(const std::string& name) {
-  const std::vector<std::string>& names = scenario_names();
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == name) return static_cast<ScenarioKind>(i);
+std::string kind_name(ScenarioKind kind) {
+  switch (kind) {
+    case ScenarioKind::kUrban:
+      return "urban";
+    case ScenarioKind::kHighway:
+      return "highway";
+    case ScenarioKind::kTunnel:
+      return "tunnel";
+    case ScenarioKind::kVegetation:
+      return "vegetation";
+    case ScenarioKind::kLoop:
+      return "loop";
   }
-  std::string allowed;
-  for (const std::string& known : names)
-    allowed += (allowed.empty() ? "" : ", ") + known;
-  throw std::invalid_argument("unknown scenario '" + name + "': expected one of " + allowed);
-}
-
-std::string scenario_name(ScenarioKind kind) {
-  return scenario_names().at(static_cast<std::size_t>(kind));
+  return "unknown";
 }
 
 ScenarioParams default_scenario(ScenarioKind kind) {
   ScenarioParams p;
   p.kind = kind;
+  p.name = kind_name(kind);
   switch (kind) {
     case ScenarioKind::kUrban:
     case ScenarioKind::kLoop:
@@ -101,6 +97,58 @@ ScenarioParams default_scenario(ScenarioKind kind) {
       break;
   }
   return p;
+}
+
+namespace {
+
+// KITTI 01: a motorway whose verges are planted, shrubs and tree rows beside both carriageways
+// (SemanticKITTI labels a tenth of its points vegetation or trunk and about 40 % terrain).
+ScenarioParams green_highway() {
+  ScenarioParams p = default_scenario(ScenarioKind::kHighway);
+  p.name = "green_highway";
+  p.planted_verges = true;
+  p.bushes_per_100m = 45.0;
+  p.trees_per_100m = 6.0;
+  return p;
+}
+
+// KITTI 04: a straight road through a small town at 14 m/s, lined with parked cars, people on the
+// sidewalks, hedges and shrubs in the front gardens, poles and signs.
+ScenarioParams busy_street() {
+  ScenarioParams p = default_scenario(ScenarioKind::kUrban);
+  p.name = "busy_street";
+  p.cruise_speed_mps = 14.0;
+  p.house_share = 0.8;
+  p.parked_car_share = 0.8;
+  p.moving_cars_per_km_lane = 25.0;
+  p.walkers_per_100m = 10.0;
+  p.standing_people_per_100m = 4.0;
+  p.bushes_per_100m = 30.0;
+  p.trees_per_100m = 8.0;
+  p.poles_per_100m = 8.0;
+  p.junctions_per_km = 5.0;
+  return p;
+}
+
+}  // namespace
+
+const std::vector<std::string>& scenario_names() {
+  static const std::vector<std::string> names = {
+      "urban", "highway", "tunnel", "vegetation", "loop", "green_highway", "busy_street"};
+  return names;
+}
+
+ScenarioParams named_scenario(const std::string& name) {
+  for (ScenarioKind kind : {ScenarioKind::kUrban, ScenarioKind::kHighway, ScenarioKind::kTunnel,
+                            ScenarioKind::kVegetation, ScenarioKind::kLoop}) {
+    if (name == kind_name(kind)) return default_scenario(kind);
+  }
+  if (name == "green_highway") return green_highway();
+  if (name == "busy_street") return busy_street();
+  std::string allowed;
+  for (const std::string& known : scenario_names())
+    allowed += (allowed.empty() ? "" : ", ") + known;
+  throw std::invalid_argument("unknown scenario '" + name + "': expected one of " + allowed);
 }
 
 }  // namespace adaptive_lego_loam::sim

@@ -66,7 +66,7 @@ bool on_off(const std::optional<std::string>& value, bool fallback) {
 
 SceneRequest make_request(const Options& o, const SensorParams& sensor) {
   SceneRequest request;
-  request.scenario = default_scenario(parse_scenario(o.scenario));
+  request.scenario = named_scenario(o.scenario);
   if (o.speed) request.scenario.cruise_speed_mps = *o.speed;
   if (o.leaf_jitter) request.scenario.leaf_jitter_m = *o.leaf_jitter;
   if (o.identical_houses) {
@@ -229,7 +229,9 @@ int main(int argc, char** argv) {
       "Simulate a LiDAR sequence with exact ground truth (poses, per-point semantic and instance "
       "labels) in a generated scene, written as a KITTI-style folder."};
   Options o;
-  app.add_option("--scenario", o.scenario, "scene: urban, highway, tunnel, vegetation, loop")
+  app.add_option("--scenario", o.scenario,
+                 "scene: urban, highway, tunnel, vegetation, loop, green_highway (the highway with "
+                 "planted verges, as KITTI 01) or busy_street (crowded, as KITTI 04)")
       ->required()
       ->check(CLI::IsMember(scenario_names()));
   app.add_option("--sensor", o.sensor,

@@ -42,6 +42,7 @@ struct Options {
   std::string config, input, topic, output;
   double beta0 = -1.0;
   bool adaptive = false;
+  bool no_segmentation = false;
   int max_frames = -1;
   bool cpu_time = false;
   bool skip_bad_scans = false;
@@ -246,6 +247,18 @@ Scan skipped_scan(const ScanSequence& sequence, std::optional<double> last_stamp
   return scan;
 }
 
+std::string describe_segmentation(const AmbientFilterParams& ambient) {
+  switch (ambient.mode) {
+    case Beta0Mode::kAdaptive:
+      return "adaptive beta0";
+    case Beta0Mode::kFixed:
+      return "fixed beta0 " + std::to_string(ambient.fixed_beta0_deg);
+    case Beta0Mode::kNone:
+      return "no segmentation";
+  }
+  return "";
+}
+
 int run(const Options& options) {
   Config config = load_config(options.config);
   if (options.beta0 > 0.0) {
@@ -253,6 +266,8 @@ int run(const Options& options) {
     config.ambient.fixed_beta0_deg = options.beta0;
   } else if (options.adaptive) {
     config.ambient.mode = Beta0Mode::kAdaptive;
+  } else if (options.no_segmentation) {
+    config.ambient.mode = Beta0Mode::kNone;
   }
   // A map folder that cannot take the map stops the run now, not after it.
   if (!options.save_map.empty()) check_map_folder(options.save_map);
@@ -263,10 +278,7 @@ int run(const Options& options) {
                         ? std::min(options.max_frames, sequence->size())
                         : sequence->size();
   std::fprintf(stderr, "run_sequence: %s, config %s, %s\n", sequence->describe().c_str(),
-               options.config.c_str(),
-               config.ambient.mode == Beta0Mode::kAdaptive
-                   ? "adaptive beta0"
-                   : ("fixed beta0 " + std::to_string(config.ambient.fixed_beta0_deg)).c_str());
+               options.config.c_str(), describe_segmentation(config.ambient).c_str());
   ProgressBar progress("run_sequence", total);
   Stopwatch wall(Clock::kWall);
   int frames = 0, empty_scans = 0, motion_gated_scans = 0, skipped_scans = 0;
@@ -333,7 +345,7 @@ int run(const Options& options) {
   nlohmann::json summary;
   summary["input"] = options.input;
   summary["config"] = options.config;
-  summary["beta0_mode"] = config.ambient.mode == Beta0Mode::kAdaptive ? "adaptive" : "fixed";
+  summary["beta0_mode"] = to_string(config.ambient.mode);
   if (config.ambient.mode == Beta0Mode::kFixed)
     summary["beta0_deg"] = config.ambient.fixed_beta0_deg;
   summary["frames"] = frames;
@@ -414,8 +426,13 @@ int main(int argc, char** argv) {
                                "fixed depth-clustering threshold (deg): "
                                "LeGO-LOAM mode")
                     ->check(CLI::Range(0.1, 89.9));
-  app.add_flag("--adaptive", options.adaptive, "adaptive beta0 from the degeneration degree")
-      ->excludes(beta0);
+  auto* adaptive =
+      app.add_flag("--adaptive", options.adaptive, "adaptive beta0 from the degeneration degree")
+          ->excludes(beta0);
+  app.add_flag("--no-segmentation", options.no_segmentation,
+               "keep every non-ground point, however small its cluster (LOAM-like baseline)")
+      ->excludes(beta0)
+      ->excludes(adaptive);
   app.add_option("--max-frames", options.max_frames, "stop after this many frames")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--output", options.output, "output folder")->required();

@@ -141,9 +141,11 @@ void print_header(const std::vector<Frame>& frames, const MethodResult& any, con
       "%zu frames, %d with labels (%d labelled boxes; frames without labels are timed, not "
       "scored)\n",
       frames.size(), any.score.frames(), any.score.objects());
-  std::printf("config %s: window w %d, gamma %.3g; clusters of at least %d points counted\n",
-              config.source.c_str(), config.ambient.euclidean_window,
-              config.ambient.euclidean_gamma, config.clustering_benchmark.min_cluster_points);
+  std::printf(
+      "config %s: window w %d, gamma %.3g, %s criterion; clusters of at least %d points counted\n",
+      config.source.c_str(), config.ambient.euclidean_window, config.ambient.euclidean_gamma,
+      to_string(config.ambient.euclidean_criterion),
+      config.clustering_benchmark.min_cluster_points);
 }
 
 void print_table(const std::vector<MethodResult>& results) {
@@ -217,6 +219,7 @@ json to_json(const std::vector<Frame>& frames, const std::vector<MethodResult>& 
   return {{"config", config.source},
           {"euclidean_window", config.ambient.euclidean_window},
           {"euclidean_gamma", config.ambient.euclidean_gamma},
+          {"euclidean_criterion", to_string(config.ambient.euclidean_criterion)},
           {"min_cluster_points", config.clustering_benchmark.min_cluster_points},
           {"frames", frames.size()},
           {"labelled_frames", results.front().score.frames()},
@@ -255,6 +258,7 @@ int main(int argc, char** argv) {
   std::string config_path = std::string(CONFIG_DIR) + "/kitti.yaml";
   std::optional<int> window;
   std::optional<double> gamma;
+  std::optional<std::string> criterion;
   app.add_option("--points", points_dir, "folder of ground-free scans (.pcd or .bin)")->required();
   app.add_option("--labels", labels_dir, "folder of label files (same base name, .txt)")
       ->required();
@@ -267,6 +271,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 10));
   app.add_option("--gamma", gamma, "override ambient_filter.euclidean_gamma")
       ->check(CLI::Range(0.1, 100.0));
+  app.add_option("--criterion", criterion,
+                 "override ambient_filter.euclidean_criterion: distance (the paper's text) or "
+                 "range_difference (the authors' code)")
+      ->check(CLI::IsMember({"distance", "range_difference"}));
   app.add_option("--json", json_path, "also write the results, with each box's IoU, to this file");
   if (const auto status = tools::parse_command_line(app, argc, argv, "segmentation_bench")) {
     return *status;
@@ -276,6 +284,11 @@ int main(int argc, char** argv) {
     Config config = load_config(config_path);
     if (window) config.ambient.euclidean_window = *window;
     if (gamma) config.ambient.euclidean_gamma = *gamma;
+    if (criterion) {
+      config.ambient.euclidean_criterion = *criterion == "distance"
+                                               ? EuclideanCriterion::kDistance
+                                               : EuclideanCriterion::kRangeDifference;
+    }
     const std::vector<Frame> frames = load_frames(points_dir, labels_dir);
     const std::vector<MethodResult> results = run_benchmark(frames, config, methods);
     print_header(frames, results.front(), config);

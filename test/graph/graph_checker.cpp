@@ -207,7 +207,11 @@ class Player {
                                              "/integrated_to_init",
                                              "/degeneration"};
     if (!wait_for([&] { return graph_connected(topics); }, 60.0)) return false;
-    ros::WallDuration(1.0).sleep();  // registered is not yet connected: as rosbag play -d 1
+    // Registered is not yet connected: wait for this checker's own links, then give the stages'
+    // links among themselves as long again (rosbag play -d does the same by time alone).
+    const ros::WallTime registered = ros::WallTime::now();
+    if (!wait_for([&] { return cloud_pub_.getNumSubscribers() > 0; }, 30.0)) return false;
+    ros::WallDuration(std::max(1.0, (ros::WallTime::now() - registered).toSec())).sleep();
     return true;
   }
 

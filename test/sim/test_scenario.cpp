@@ -120,7 +120,7 @@ INSTANTIATE_TEST_SUITE_P(Sim, EveryScenario,
                          ::testing::Values(ScenarioKind::kUrban, ScenarioKind::kHighway,
                                            ScenarioKind::kTunnel, ScenarioKind::kVegetation,
                                            ScenarioKind::kLoop),
-                         [](const auto& info) { return scenario_name(info.param); });
+                         [](const auto& info) { return kind_name(info.param); });
 
 TEST(SimScenarios, SameSeedSameBytesOtherSeedOtherScene) {
   // Scans (wind, shaking and noise included) of the scenario with the most randomness...

@@ -13,16 +13,13 @@
 
 namespace adaptive_lego_loam::sim {
 
+// How a scene is built (the path, the road's cross-section, the layout of its objects).
 enum class ScenarioKind { kUrban, kHighway, kTunnel, kVegetation, kLoop };
-
-// "urban", "highway", "tunnel", "vegetation", "loop".
-const std::vector<std::string>& scenario_names();
-// Throws std::invalid_argument listing the names.
-ScenarioKind parse_scenario(const std::string& name);
-std::string scenario_name(ScenarioKind kind);
+std::string kind_name(ScenarioKind kind);  // "urban", "highway", "tunnel", "vegetation", "loop"
 
 // What a scenario's scene holds. Densities are per 100 m of road and per side.
 struct ScenarioParams {
+  std::string name = "urban";  // the scenario's name (scenario_names())
   ScenarioKind kind = ScenarioKind::kUrban;
   // Road: carriageway from -road_half_width to +road_half_width around the centreline.
   double road_half_width = 7.0;
@@ -46,8 +43,11 @@ struct ScenarioParams {
   double walkers_per_100m = 3.0;
   double standing_people_per_100m = 1.0;
   double walls_per_100m = 0.0;
-  double fences_share = 0.5;      // of gaps between buildings closed by a fence
-  double house_share = 0.5;       // of building lots with a detached house rather than a block
+  // Highway verges planted along the road (green_highway): a belt of shrubs behind the guard rail
+  // and rows of trees behind it, on open and berm stretches (a noise wall or cutting has none).
+  bool planted_verges = false;
+  double fences_share = 0.5;  // of gaps between buildings closed by a fence
+  double house_share = 0.5;   // of building lots with a detached house rather than a block
   // Every lot the same detached house at the same spacing, without fences or garden plants: a
   // street where every place looks alike (place recognition must not take one for another).
   bool identical_houses = false;
@@ -63,6 +63,14 @@ struct ScenarioParams {
 };
 
 ScenarioParams default_scenario(ScenarioKind kind);
+
+// The named scenarios: one per kind ("urban", "highway", "tunnel", "vegetation", "loop") and
+// variants of a kind with other contents: "green_highway" (the highway with planted verges,
+// shrub belts and tree rows on both sides, as KITTI 01) and "busy_street" (a street crowded with
+// parked and moving cars, people, hedges and street furniture, as KITTI 04).
+const std::vector<std::string>& scenario_names();
+// Throws std::invalid_argument listing the names.
+ScenarioParams named_scenario(const std::string& name);
 
 struct SceneRequest {
   ScenarioParams scenario;

@@ -11,6 +11,7 @@ EuclideanClusteringParams euclidean_params(const AmbientFilterParams& ambient, i
   params.window = ambient.euclidean_window;
   params.gamma = ambient.euclidean_gamma;
   params.fixed_threshold = ambient.euclidean_fixed_threshold;
+  params.criterion = ambient.euclidean_criterion;
   params.min_points = min_points;
   return params;
 }
@@ -36,9 +37,20 @@ std::vector<ScanPoint> AmbientFilterResult::skeleton_cloud() const {
   return points;
 }
 
+namespace {
+
+// Without segmentation every cluster is kept, however small.
+SegmentationParams segmentation_params(const Config& config) {
+  SegmentationParams params = config.segmentation;
+  if (config.ambient.mode == Beta0Mode::kNone) params.size_rule = {1, 1, 1};
+  return params;
+}
+
+}  // namespace
+
 AmbientFilter::AmbientFilter(const Config& config)
     : config_(config),
-      segmenter_(config.sensor, config.segmentation),
+      segmenter_(config.sensor, segmentation_params(config)),
       euclidean_(segmenter_.geometry(),
                  euclidean_params(config.ambient, config.ambient.skeleton_euclidean_min_points)),
       strict_depth_(segmenter_.geometry()) {}
@@ -58,7 +70,7 @@ void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
     result.skeleton_points = 0;
     result.normals.clear();
     result.mu = 0.0;
-    result.beta0_deg = ambient.fixed_beta0_deg;
+    result.beta0_deg = ambient.mode == Beta0Mode::kNone ? 0.0 : ambient.fixed_beta0_deg;
     segmenter_.cluster_and_build(scan, result.beta0_deg, result.segmentation);
     return;
   }

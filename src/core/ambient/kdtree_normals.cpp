@@ -7,6 +7,14 @@
 
 namespace adaptive_lego_loam {
 
+KdTreeNormalParams kdtree_normal_params(const Config& config) {
+  KdTreeNormalParams params;
+  params.radius = config.ambient.normal_depth_threshold;
+  params.min_neighbors = config.ambient.normal_min_neighbors;
+  params.max_range = config.sensor.max_range;
+  return params;
+}
+
 std::vector<ScanPoint> non_ground_points(const SegmentationResult& segmentation) {
   std::vector<ScanPoint> points;
   const RangeImage& image = segmentation.image;

@@ -10,26 +10,30 @@ EuclideanClustering::EuclideanClustering(const RangeImageGeometry& geometry,
                                          const EuclideanClusteringParams& params)
     : geometry_(geometry), params_(params) {
   const int w = params_.window, width = 2 * w + 1;
-  squared_factor_.assign(geometry_.rows * width * width, 0.f);
+  const bool by_range = params_.criterion == EuclideanCriterion::kRangeDifference;
+  factor_.assign(geometry_.rows * width * width, 0.f);
   for (int row = 0; row < geometry_.rows; ++row) {
     for (int row_step = -w; row_step <= w; ++row_step) {
       if (row + row_step < 0 || row + row_step >= geometry_.rows) continue;
       for (int col_step = -w; col_step <= w; ++col_step) {
         const double factor = threshold(row, row_step, col_step, 1.0);
         const int k = (row_step + w) * width + (col_step + w);
-        squared_factor_[row * width * width + k] = static_cast<float>(factor * factor);
+        factor_[row * width * width + k] = static_cast<float>(by_range ? factor : factor * factor);
       }
     }
   }
 }
 
-double EuclideanClustering::threshold(int row, int row_step, int col_step, double range_b) const {
+double EuclideanClustering::threshold(int row, int row_step, int col_step, double range) const {
   // The angle between the two beams, from its vertical and horizontal parts (docs/METHOD.md step
   // 4).
   const double vertical = geometry_.row_gap_rad(row, row + row_step);
   const double horizontal = col_step * geometry_.col_step_rad;
   const double alpha = std::sqrt(vertical * vertical + horizontal * horizontal);
-  return params_.gamma * std::sin(alpha) * range_b;
+  if (params_.criterion == EuclideanCriterion::kRangeDifference) {
+    return params_.gamma * alpha * range;
+  }
+  return params_.gamma * std::sin(alpha) * range;
 }
 
 namespace {
@@ -69,6 +73,7 @@ int EuclideanClustering::grow_cluster(const RangeImage& image, int seed, int32_t
   const int rows = image.rows(), cols = image.cols(), w = params_.window;
   const int width = 2 * w + 1;
   const bool fixed = params_.fixed_threshold > 0.0;
+  const bool by_range = !fixed && params_.criterion == EuclideanCriterion::kRangeDifference;
   const float fixed_squared = static_cast<float>(params_.fixed_threshold * params_.fixed_threshold);
   const ScanPoint* points = &image.point(0);
   const float* ranges = image.ranges().data();
@@ -82,15 +87,20 @@ int EuclideanClustering::grow_cluster(const RangeImage& image, int seed, int32_t
     const QueuedCell centre = queue[head++];
     // Copied: the byte stores below could alias the image's points for all the compiler knows.
     const float ax = points[centre.cell].x, ay = points[centre.cell].y, az = points[centre.cell].z;
-    const float* factor = &squared_factor_[centre.row * width * width];
-    // Neighbour (row, col) joins when |AB|^2 < factor * |OB|^2; `k` is its window offset.
-    auto try_join = [&](int row, int col, int k) {
-      const int cell = row * cols + col;
+    const float range_a = ranges[centre.cell];
+    const float* factor = &factor_[centre.row * width * width];
+    // Whether neighbour `cell` joins; `k` is its window offset.
+    auto joins = [&](int cell, int k) {
+      const float range_b = ranges[cell];
+      if (by_range) return std::fabs(range_a - range_b) < factor[k] * range_a;
       const ScanPoint& b = points[cell];
       const float dx = ax - b.x, dy = ay - b.y, dz = az - b.z;
-      const float range_b = ranges[cell];
       const float limit = fixed ? fixed_squared : factor[k] * range_b * range_b;
-      if (dx * dx + dy * dy + dz * dz < limit) {
+      return dx * dx + dy * dy + dz * dz < limit;
+    };
+    auto try_join = [&](int row, int col, int k) {
+      const int cell = row * cols + col;
+      if (joins(cell, k)) {
         label[cell] = id;
         is_free[cell] = 0;
         queue[tail++] = {cell, row, col};

@@ -8,6 +8,22 @@
 #include <sstream>
 
 namespace adaptive_lego_loam {
+
+const char* to_string(EuclideanCriterion criterion) {
+  return criterion == EuclideanCriterion::kDistance ? "distance" : "range_difference";
+}
+
+const char* to_string(Beta0Mode mode) {
+  switch (mode) {
+    case Beta0Mode::kAdaptive:
+      return "adaptive";
+    case Beta0Mode::kFixed:
+      return "fixed";
+    case Beta0Mode::kNone:
+      return "none";
+  }
+  return "unknown";
+}
 namespace {
 
 // A mapping key as text. YAML also allows a list or a mapping as a key, which names nothing here
@@ -182,13 +198,19 @@ void read_segmentation(SectionReader& in, SegmentationParams& s) {
 }
 
 void read_ambient(SectionReader& in, AmbientFilterParams& a) {
-  in.choice("mode", a.mode, {{"adaptive", Beta0Mode::kAdaptive}, {"fixed", Beta0Mode::kFixed}});
+  in.choice("mode", a.mode,
+            {{"adaptive", Beta0Mode::kAdaptive},
+             {"fixed", Beta0Mode::kFixed},
+             {"none", Beta0Mode::kNone}});
   in.number("beta0_min_deg", a.beta0_min_deg, 0.1, 89.9);
   in.number("beta0_max_deg", a.beta0_max_deg, 0.1, 89.9);
   in.number("fixed_beta0_deg", a.fixed_beta0_deg, 0.1, 89.9);
   in.number("euclidean_window", a.euclidean_window, 1, 10);
   in.number("euclidean_gamma", a.euclidean_gamma, 0.1, 100.0);
   in.number("euclidean_fixed_threshold", a.euclidean_fixed_threshold, 0.0, 100.0);
+  in.choice("euclidean_criterion", a.euclidean_criterion,
+            {{"distance", EuclideanCriterion::kDistance},
+             {"range_difference", EuclideanCriterion::kRangeDifference}});
   in.number("skeleton_euclidean_min_points", a.skeleton_euclidean_min_points, 1, 1000000);
   in.number("skeleton_depth_min_points", a.skeleton_depth_min_points, 1, 1000000);
   in.number("normal_sample_ratio", a.normal_sample_ratio, 0.0001, 1.0);
@@ -228,6 +250,8 @@ void read_odometry(SectionReader& in, OdometryParams& o) {
   in.number("huber_loss", o.huber_loss, 0.001, 100.0);
   in.boolean("constant_velocity", o.constant_velocity);
   in.boolean("motion_from_mapping", o.motion_from_mapping);
+  in.number("start_search_max_speed", o.start_search_max_speed, 0.0, 100.0);
+  in.number("start_search_step", o.start_search_step, 0.05, 10.0);
   in.reject_unknown_keys();
 }
 

@@ -30,12 +30,27 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
 
   const Eigen::Isometry3d prediction =
       params_.constant_velocity ? last_motion_ : Eigen::Isometry3d::Identity();
-  out.odometry = registration_.register_scan(out.features, prediction);
+  // The first pair: no motion is known yet, and the sensor may already be moving fast.
+  const bool first_pair = scans_ == 1 && params_.start_search_max_speed > 0.0;
+  out.odometry = first_pair ? registration_.register_scan(out.features, start_guesses())
+                            : registration_.register_scan(out.features, prediction);
   last_motion_ = out.odometry.motion;
   pose_ = pose_ * out.odometry.motion;
   out.pose = pose_;
   first_ = false;
+  ++scans_;
   out.times.add("odometry", watch.lap_ms());
+}
+
+std::vector<Eigen::Isometry3d> LidarOdometry::start_guesses() const {
+  std::vector<Eigen::Isometry3d> guesses;
+  const double reach = params_.start_search_max_speed * sensor_.scan_period;
+  for (double x = 0.0; x <= reach + 1e-9; x += params_.start_search_step) {
+    Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
+    guess.translation().x() = x;
+    guesses.push_back(guess);
+  }
+  return guesses;
 }
 
 bool uses_mapped_motion(const OdometryParams& odometry, const MappingParams& mapping) {

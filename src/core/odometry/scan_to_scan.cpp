@@ -26,6 +26,17 @@ Eigen::Vector3f moved_point(const CloudPoint& p, const Eigen::Isometry3d& pose) 
   return (pose * position(p)).cast<float>();
 }
 
+// Correspondences whose point, moved by `pose`, lies within kInlierDistance of its line or plane.
+int count_inliers(const Correspondences& matches, const Eigen::Isometry3d& pose) {
+  constexpr double kInlierDistance = 0.1;  // m
+  int inliers = 0;
+  for (const LineMatch& m : matches.lines)
+    inliers += ((pose * m.point - m.through).cross(m.direction)).norm() < kInlierDistance;
+  for (const PlaneMatch& m : matches.planes)
+    inliers += std::abs(m.normal.dot(pose * m.point) + m.offset) < kInlierDistance;
+  return inliers;
+}
+
 }  // namespace
 
 ScanToScanOdometry::ScanToScanOdometry(const OdometryParams& params) : params_(params) {}
@@ -111,42 +122,76 @@ void ScanToScanOdometry::solve(const Correspondences& matches, MatchKinds kinds,
   ceres::Solve(registration_solver_options(params_.solver_iterations), &problem, &summary);
 }
 
-OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
-                                                 const Eigen::Isometry3d& guess) {
+OdometryResult ScanToScanOdometry::align(const FeatureSet& current, const Eigen::Isometry3d& guess,
+                                         int iterations) const {
   OdometryResult result;
   result.motion = guess;
-  if (previous_corners_ && previous_surfaces_) {
-    double pose[6];
-    pose_to_euler_vector(guess, pose);
-    Correspondences matches;
-    // The first pair starts from no motion at all, possibly far from the truth: more searches.
-    const int iterations = first_pair_ ? 4 * params_.max_iterations : params_.max_iterations;
-    first_pair_ = false;
-    for (int iteration = 0; iteration < iterations; ++iteration) {
-      const Eigen::Isometry3d before = euler_vector_to_pose(pose);
-      find_edge_matches(*current.sharp, before, matches);
-      find_plane_matches(*current.flat, before, matches);
-      if (params_.mode == OdometryMode::kTwoStep) {
-        solve(matches, MatchKinds::kPlanes, {2, 3, 4}, pose);  // ground planes: roll, pitch, z
-        solve(matches, MatchKinds::kLines, {0, 1, 5}, pose);   // edges: yaw, x, y
-      } else {
-        solve(matches, MatchKinds::kBoth, {}, pose);
-      }
-      result.iterations = iteration + 1;
-      const Eigen::Isometry3d change = before.inverse() * euler_vector_to_pose(pose);
-      const double angle = Eigen::AngleAxisd(change.linear()).angle();
-      // At least two searches: the first solve starts from stale matches.
-      if (iteration >= 1 && angle < 1e-4 && change.translation().norm() < 1e-3) break;
+  double pose[6];
+  pose_to_euler_vector(guess, pose);
+  Correspondences matches;
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    const Eigen::Isometry3d before = euler_vector_to_pose(pose);
+    find_edge_matches(*current.sharp, before, matches);
+    find_plane_matches(*current.flat, before, matches);
+    if (params_.mode == OdometryMode::kTwoStep) {
+      solve(matches, MatchKinds::kPlanes, {2, 3, 4}, pose);  // ground planes: roll, pitch, z
+      solve(matches, MatchKinds::kLines, {0, 1, 5}, pose);   // edges: yaw, x, y
+    } else {
+      solve(matches, MatchKinds::kBoth, {}, pose);
     }
-    result.edge_matches = static_cast<int>(matches.lines.size());
-    result.plane_matches = static_cast<int>(matches.planes.size());
-    result.registered = result.edge_matches + result.plane_matches >= 10;
-    if (result.registered) result.motion = euler_vector_to_pose(pose);
+    result.iterations = iteration + 1;
+    const Eigen::Isometry3d change = before.inverse() * euler_vector_to_pose(pose);
+    const double angle = Eigen::AngleAxisd(change.linear()).angle();
+    // At least two searches: the first solve starts from stale matches.
+    if (iteration >= 1 && angle < 1e-4 && change.translation().norm() < 1e-3) break;
   }
+  result.edge_matches = static_cast<int>(matches.lines.size());
+  result.plane_matches = static_cast<int>(matches.planes.size());
+  result.registered = result.edge_matches + result.plane_matches >= 10;
+  if (result.registered) result.motion = euler_vector_to_pose(pose);
+  result.inliers = count_inliers(matches, euler_vector_to_pose(pose));
+  return result;
+}
+
+void ScanToScanOdometry::keep(const FeatureSet& current) {
   previous_corners_ = current.less_sharp;
   previous_surfaces_ = current.less_flat;
   corner_tree_.build(previous_corners_);
   surface_tree_.build(previous_surfaces_);
+}
+
+OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
+                                                 const Eigen::Isometry3d& guess) {
+  return register_scan(current, std::vector<Eigen::Isometry3d>{guess});
+}
+
+OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
+                                                 const std::vector<Eigen::Isometry3d>& guesses) {
+  OdometryResult result;
+  result.motion = guesses.front();
+  if (previous_corners_ && previous_surfaces_) {
+    // The first pair starts from no motion known, possibly far from the truth: more searches.
+    const int iterations = first_pair_ ? 4 * params_.max_iterations : params_.max_iterations;
+    first_pair_ = false;
+    if (guesses.size() == 1) {
+      result = align(current, guesses.front(), iterations);
+    } else {
+      // Each guess converges to its nearest fit; the one with the most features on their lines
+      // and planes is refined with the full searches. A repeating structure fits at every alias,
+      // so what does not repeat (and the ground, which fits everywhere alike) decides.
+      int best_inliers = -1;
+      Eigen::Isometry3d best = guesses.front();
+      for (const Eigen::Isometry3d& guess : guesses) {
+        const OdometryResult candidate = align(current, guess, params_.max_iterations);
+        if (candidate.registered && candidate.inliers > best_inliers) {
+          best_inliers = candidate.inliers;
+          best = candidate.motion;
+        }
+      }
+      result = align(current, best, iterations);
+    }
+  }
+  keep(current);
   return result;
 }
 

@@ -143,6 +143,34 @@ void add_roadside_sign(Layout& l, double s, double side) {
           Eigen::Vector3f(0.05f, width, height), board);
 }
 
+// Planted verges (ScenarioParams::planted_verges): on each side of an open or berm stretch a belt
+// of shrubs from 2 to 9 m behind the guard rail, broken by gaps, and rows of trees from 9 to 25 m.
+// A noise wall or a cutting has no verge to plant.
+void plant_verges(Layout& l, const std::vector<HighwayStretch>& stretches) {
+  const double w = l.p.road_half_width;
+  for (const HighwayStretch& stretch : stretches) {
+    for (int index = 0; index < 2; ++index) {
+      const Roadside roadside = stretch.roadside[index];
+      if (roadside == Roadside::kNoiseWall || roadside == Roadside::kCutting) continue;
+      const double side = index == 0 ? -1.0 : 1.0;
+      for (double s = stretch.s0 + l.rng.uniform(0.0, 5.0); s < stretch.s1;) {
+        // A stand of shrubs 10-60 m long, then a gap of 5-30 m.
+        const double stand_end = std::min(stretch.s1, s + l.rng.uniform(10.0, 60.0));
+        for (; s < stand_end; s += l.step(l.p.bushes_per_100m)) {
+          l.add_plant(l.bush_prototypes, l.beside(s, side * (w + l.rng.uniform(2.0, 9.0))), 0.6,
+                      w + 1.5);
+        }
+        s = stand_end + l.rng.uniform(5.0, 30.0);
+      }
+      for (double s = stretch.s0 + l.rng.uniform(0.0, 20.0); s < stretch.s1;
+           s += l.step(l.p.trees_per_100m)) {
+        l.add_plant(l.tree_prototypes, l.beside(s, side * (w + l.rng.uniform(9.0, 25.0))), 0.6,
+                    w + 6.0);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void layout_highway(Layout& l, const std::vector<HighwayStretch>& stretches) {
@@ -181,6 +209,10 @@ void layout_highway(Layout& l, const std::vector<HighwayStretch>& stretches) {
   for (double side : {-1.0, 1.0}) {
     for (double s = l.rng.uniform(100.0, 800.0); s < l.length(); s += l.rng.uniform(600.0, 1500.0))
       add_roadside_sign(l, s, side);
+  }
+  if (l.p.planted_verges) {
+    plant_verges(l, stretches);
+    return;
   }
   for (double side : {-1.0, 1.0}) {
     for (double s = l.rng.uniform(0.0, 30.0); s < l.length(); s += l.step(l.p.bushes_per_100m))

@@ -69,3 +69,37 @@ TEST(EuclideanClustering, ThresholdGrowsWithRange) {
   const double column_step = 2 * M_PI / 1800;
   EXPECT_NEAR(clustering.threshold(10, 0, 2, 40.0), 1.2 * std::sin(2 * column_step) * 40.0, 1e-9);
 }
+
+// Within one row, neighbours k columns apart at ranges r and r + dr are |AB| = sqrt((k a r)^2 +
+// dr^2) apart (a the column step), so the distance test |AB| < gamma sin(k a) r joins them only
+// while dr < sqrt(gamma^2 - 1) k a r (0.66 k a r at gamma 1.2), where the range-difference test
+// allows dr < gamma k a r: on a wall turned 42-48 deg from the beam (dr = tan(incidence) k a r,
+// 0.90-1.11 k a r) the first cuts every column apart and the second keeps the wall whole. A low
+// wall seen by one row only, so that no neighbour in another row bridges the columns.
+TEST(EuclideanClustering, RangeDifferenceCriterionKeepsAnObliqueWallThatTheDistanceTestCuts) {
+  const SensorParams sensor = test::even_sensor(3, 1800, -15.0, 15.0);
+  Scene scene;
+  scene.boxes = {{{0.0, 4.0, -0.3}, {40.0, 4.3, 0.3}}};
+  const Scan scan = test::render(sensor, scene);
+  RangeProjector projector(sensor);
+  RangeImage image;
+  projector.project(scan, image);
+  auto oblique = [](const ScanPoint& p) {
+    const double azimuth_deg = std::atan2(p.y, p.x) * 180.0 / M_PI;
+    return p.y < 4.01 && azimuth_deg > 42.0 && azimuth_deg < 48.0;
+  };
+  ClusterLabels labels;
+  EuclideanClusteringParams distance;
+  EuclideanClustering(projector.geometry(), distance).cluster(image, {}, labels);
+  const auto by_distance = cluster_sizes_of(labels, image, oblique);
+  EuclideanClusteringParams range_difference;
+  range_difference.criterion = EuclideanCriterion::kRangeDifference;
+  EuclideanClustering(projector.geometry(), range_difference).cluster(image, {}, labels);
+  const auto by_range = cluster_sizes_of(labels, image, oblique);
+  EXPECT_GT(by_distance.size(), 10u);
+  EXPECT_EQ(by_range.size(), 1u);
+  // gamma * alpha * r_A for the range-difference test.
+  EuclideanClustering clustering(projector.geometry(), range_difference);
+  const double column_step = 2 * M_PI / sensor.columns;
+  EXPECT_NEAR(clustering.threshold(1, 0, 3, 10.0), 1.2 * 3 * column_step * 10.0, 1e-9);
+}

@@ -6,6 +6,7 @@
 
 #include "adaptive_lego_loam/core/ambient/skeleton_normals.h"
 #include "adaptive_lego_loam/core/clustering/segmenter.h"
+#include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/core/common/scan.h"
 
 namespace adaptive_lego_loam {
@@ -15,6 +16,9 @@ struct KdTreeNormalParams {
   int min_neighbors = 5;
   double max_range = 100.0;  // d_max of the weight
 };
+
+// The filter's settings for it: the skeleton normals' depth_0 as the radius, t_0, d_max.
+KdTreeNormalParams kdtree_normal_params(const Config& config);
 
 // Every occupied, non-ground cell's point of a segmentation result.
 std::vector<ScanPoint> non_ground_points(const SegmentationResult& segmentation);

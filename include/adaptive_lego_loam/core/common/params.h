@@ -58,7 +58,15 @@ struct SegmentationParams {
   int outlier_downsample = 5;  // keep every n-th outlier column in the outlier cloud
 };
 
-enum class Beta0Mode { kAdaptive, kFixed };
+// kNone: no segmentation at all, every non-ground point kept (LOAM-like, the paper's baseline).
+enum class Beta0Mode { kAdaptive, kFixed, kNone };
+const char* to_string(Beta0Mode mode);  // "adaptive", "fixed", "none"
+
+// The adaptive Euclidean join test (docs/METHOD.md step 4): the paper's text compares the 3-D
+// distance, |AB| < gamma sin(alpha) |OB|; the authors' published code the range difference,
+// |r_A - r_B| < gamma alpha r_A.
+enum class EuclideanCriterion { kDistance, kRangeDifference };
+const char* to_string(EuclideanCriterion criterion);  // "distance", "range_difference"
 
 struct AmbientFilterParams {
   Beta0Mode mode = Beta0Mode::kAdaptive;
@@ -69,6 +77,7 @@ struct AmbientFilterParams {
   int euclidean_window = 3;  // w: the window is (2w+1) x (2w+1)
   double euclidean_gamma = 1.2;
   double euclidean_fixed_threshold = 0.0;  // m; > 0 turns the adaptive threshold off (baseline)
+  EuclideanCriterion euclidean_criterion = EuclideanCriterion::kDistance;
   // Step 5: skeleton.
   int skeleton_euclidean_min_points = 100;  // n_e
   int skeleton_depth_min_points = 30;       // n_d
@@ -107,6 +116,12 @@ struct OdometryParams {
   bool constant_velocity = true;    // initial guess from the previous motion
   // De-skew and predict with the previous motion as mapping refined it, when mapping runs.
   bool motion_from_mapping = true;
+  // A start in motion (a bag, a node restarted at speed): the first pair of scans is registered
+  // from guesses every start_search_step along the sensor's x axis up to start_search_max_speed,
+  // and the result that fits best is kept; from zero alone it would settle on the nearest alias
+  // of a repeating structure (guard-rail posts). 0: from zero alone.
+  double start_search_max_speed = 40.0;  // m/s
+  double start_search_step = 0.5;        // m
 };
 
 // Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).
@@ -200,7 +215,7 @@ struct LoopClosureParams {
   // max_drift_fraction of the path driven between its two ends, plus max_drift_offset. A larger
   // correction is a place that only looks the same (a street of identical houses), not drift.
   double max_drift_fraction = 0.05;
-  double max_drift_offset = 5.0;  // m
+  double max_drift_offset = 5.0;    // m
   double max_loop_residual = 10.0;  // sigmas
   // s: after loops entered the pose graph, the next attempt waits this long (a place driven
   // again is closed once, not at every keyframe).

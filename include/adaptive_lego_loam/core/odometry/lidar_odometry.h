@@ -42,6 +42,10 @@ class LidarOdometry {
   std::vector<ScanPoint> points_, outliers_;
   std::vector<float> fractions_;
   bool first_ = true;
+  int scans_ = 0;  // processed so far
+  // Motions from the previous scan for the first pair: 0, step, 2 step, ... along x up to the
+  // farthest the sensor moves in a scan period at start_search_max_speed.
+  std::vector<Eigen::Isometry3d> start_guesses() const;
   Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
 };

@@ -5,6 +5,7 @@
 // and pitch; then edges fix x, y and yaw) or one joint 6-DoF solve.
 
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/core/odometry/feature_extraction.h"
@@ -20,6 +21,7 @@ struct OdometryResult {
   int edge_matches = 0;
   int plane_matches = 0;
   int iterations = 0;
+  int inliers = 0;          // correspondences within 0.1 m of their line or plane at the result
   bool registered = false;  // false for the first scan or when too few matches were found
 };
 
@@ -29,9 +31,16 @@ class ScanToScanOdometry {
   // Registers `current` against the previous scan's features, starting from `guess` (the motion
   // from the previous scan to this one); then keeps `current` as the previous scan.
   OdometryResult register_scan(const FeatureSet& current, const Eigen::Isometry3d& guess);
+  // The same from each of `guesses` in turn: the result with the most inliers is kept.
+  OdometryResult register_scan(const FeatureSet& current,
+                               const std::vector<Eigen::Isometry3d>& guesses);
   void reset();
 
  private:
+  // Registration from `guess` with up to `iterations` correspondence searches; no state changes.
+  OdometryResult align(const FeatureSet& current, const Eigen::Isometry3d& guess,
+                       int iterations) const;
+  void keep(const FeatureSet& current);
   void find_edge_matches(const Cloud& sharp, const Eigen::Isometry3d& pose,
                          Correspondences& matches) const;
   void find_plane_matches(const Cloud& flat, const Eigen::Isometry3d& pose,

@@ -1,0 +1,259 @@
+#!/usr/bin/env python3
+"""The experiment suite behind docs/RESULTS.md: simulated drives of every scenario (along real
+KITTI trajectories where they fit) run with beta0 fixed at 10, 30 and 60 deg, adaptive, and
+without segmentation; the real KITTI scans of the data folder; the clustering benchmark (the
+paper's Table I) with both Euclidean criteria; mu from the range image and from a KD-tree along a
+drive (Fig. 8). Runs JOBS programs at a time, shows progress, and writes WORK/results.json for
+report.py. Called by scripts/run_experiments.sh, which builds first.
+
+  suite.py --bin DIR --root DIR --data DIR --work DIR [--quick] [--jobs N]
+"""
+
+import argparse
+import concurrent.futures
+import json
+import os
+import pathlib
+import subprocess
+import sys
+import time
+
+METHODS = {  # name: run_sequence arguments
+    "fixed 10": ["--beta0", "10"],
+    "fixed 30": ["--beta0", "30"],
+    "fixed 60": ["--beta0", "60"],
+    "adaptive": ["--adaptive"],
+    "none": ["--no-segmentation"],
+}
+SENSORS = {"hdl64e": "kitti.yaml", "vlp16": "vlp16.yaml"}
+
+
+def scenarios(quick):
+    """(name, lidar_sim scenario, KITTI sequence whose trajectory it drives or None, first frame,
+    frames). The seeds vary the scene around the same trajectory."""
+    frames = 100 if quick else 300
+    full = [
+        ("green_highway", "green_highway", "01", 0, frames),
+        ("busy_street", "busy_street", "04", 0, min(frames, 271)),
+        ("urban_00", "urban", "00", 0, frames),
+        ("urban_07", "urban", "07", 0, frames),
+        ("highway", "highway", "01", 0, frames),
+        ("loop", "loop", None, 0, frames + 100),
+        ("vegetation", "vegetation", None, 0, frames),
+        ("tunnel", "tunnel", None, 0, frames),
+    ]
+    return full[:3] if quick else full
+
+
+def seeds(quick):
+    return [1] if quick else [1, 2, 3]
+
+
+class Runner:
+    def __init__(self, args):
+        self.bin = pathlib.Path(args.bin)
+        self.root = pathlib.Path(args.root)
+        self.data = pathlib.Path(args.data)
+        self.work = pathlib.Path(args.work)
+        self.jobs = args.jobs
+        self.done = 0
+        self.total = 0
+        self.started = time.time()
+
+    def run(self, command, log):
+        log.parent.mkdir(parents=True, exist_ok=True)
+        with open(log, "w") as out:
+            result = subprocess.run([str(c) for c in command], stdout=out, stderr=subprocess.STDOUT)
+        if result.returncode != 0:
+            tail = log.read_text().strip().splitlines()[-3:]
+            raise RuntimeError(f"{command[0]} failed (log {log}): " + " | ".join(tail))
+
+    def progress(self, what):
+        self.done += 1
+        elapsed = time.time() - self.started
+        line = f"\rexperiments: {self.done}/{self.total} {what[:60]:<60} {elapsed / 60:5.1f} min"
+        sys.stderr.write(line if sys.stderr.isatty() else line[1:] + "\n")
+        sys.stderr.flush()
+
+    def parallel(self, tasks):
+        """Runs (description, function) pairs JOBS at a time; returns their results in order."""
+        self.total += len(tasks)
+        results = [None] * len(tasks)
+        with concurrent.futures.ThreadPoolExecutor(self.jobs) as pool:
+            futures = {pool.submit(task): i for i, (_, task) in enumerate(tasks)}
+            for future in concurrent.futures.as_completed(futures):
+                i = futures[future]
+                results[i] = future.result()
+                self.progress(tasks[i][0])
+        return results
+
+    # -- simulated drives ------------------------------------------------------------------
+
+    def trajectory(self, sequence, first, frames):
+        """KITTI poses and times of frames [first, first + frames), times from 0."""
+        folder = self.work / "trajectories"
+        folder.mkdir(parents=True, exist_ok=True)
+        poses = folder / f"{sequence}_{first}_{frames}.txt"
+        times = folder / f"{sequence}_{first}_{frames}_times.txt"
+        if not poses.exists():
+            lines = (self.data / "kitti_odometry" / "poses" / f"{sequence}.txt").read_text().split("\n")
+            stamps = [float(t) for t in
+                      (self.data / "kitti_odometry" / "times" / f"{sequence}.txt").read_text().split()]
+            if first + frames > len(stamps):
+                raise RuntimeError(f"KITTI {sequence} has {len(stamps)} frames, not {first + frames}")
+            poses.write_text("\n".join(lines[first:first + frames]) + "\n")
+            times.write_text("".join(f"{t - stamps[first]:.6f}\n" for t in stamps[first:first + frames]))
+        return poses, times
+
+    def simulate(self, name, scenario, sequence, first, frames, sensor, seed):
+        out = self.work / "sequences" / f"{name}_{sensor}_s{seed}"
+        if (out / "poses.txt").exists():
+            return out
+        command = [self.bin / "lidar_sim", "--scenario", scenario, "--sensor", sensor,
+                   "--frames", frames, "--seed", seed, "--output", out, "--overwrite"]
+        if sequence:
+            poses, times = self.trajectory(sequence, first, frames)
+            command += ["--trajectory", poses, "--trajectory-times", times]
+        self.run(command, out.parent / f"{out.name}.log")
+        return out
+
+    def odometry(self, sequence, config, method, out, gt=None, calib=None):
+        """run_sequence with `method`, then evaluate_odometry; returns both JSONs' figures."""
+        if not (out / "metrics.json").exists():
+            self.run([self.bin / "run_sequence", "--config", config, "--input", sequence,
+                      "--output", out, "--cpu-time"] + METHODS[method], out.with_suffix(".log"))
+            command = [self.bin / "evaluate_odometry", "--gt", gt or sequence / "poses.txt",
+                       "--est", out / "poses_kitti.txt", "--json", out / "metrics.json"]
+            if calib:
+                command += ["--calib", calib]
+            self.run(command, out.with_suffix(".eval.log"))
+        summary = json.loads((out / "summary.json").read_text())
+        metrics = json.loads((out / "metrics.json").read_text())
+        kitti = metrics.get("kitti") or {}
+        return {
+            "t_err": kitti.get("t_err_percent"),
+            "r_err": kitti.get("r_err_deg_per_100m"),
+            "rpe": metrics["rpe"]["translation_rmse_m"],
+            "ate": metrics["ate"]["rmse_m"],
+            "fps": summary["frames_per_second"],
+            "frame_ms": summary["frame_ms"],
+            "frames": summary["frames"],
+            "output": str(out),
+        }
+
+    def simulated_suite(self, quick):
+        generate = []
+        for name, scenario, sequence, first, frames in scenarios(quick):
+            for sensor in SENSORS:
+                for seed in seeds(quick):
+                    generate.append((f"simulate {name} {sensor} seed {seed}",
+                                     lambda a=(name, scenario, sequence, first, frames, sensor, seed):
+                                     (a, self.simulate(*a))))
+        sequences = self.parallel(generate)
+        runs = []
+        for (name, _, sequence, first, frames, sensor, seed), folder in sequences:
+            config = self.root / "config" / SENSORS[sensor]
+            for method in METHODS:
+                out = self.work / "runs" / folder.name / method.replace(" ", "")
+                runs.append((f"{folder.name} {method}",
+                             lambda k=(name, sensor, seed, method), f=folder, c=config, o=out:
+                             (k, self.odometry(f, c, k[3], o))))
+        results = []
+        for (name, sensor, seed, method), figures in self.parallel(runs):
+            figures.update(scenario=name, sensor=sensor, seed=seed, method=method)
+            results.append(figures)
+        return results
+
+    # -- real KITTI ------------------------------------------------------------------------
+
+    def real_kitti(self):
+        kitti = self.data / "kitti_odometry"
+        sequences = [("07 (frames 0-4)", kitti / "seq07_frames0-4", "poses.txt")]
+        for number in ["00", "02", "05", "08"]:
+            sequences.append((f"{number} (first 10)", kitti / "first10" / number,
+                              "semantickitti_poses.txt"))
+        runs = []
+        for label, folder, gt in sequences:
+            for method in METHODS:
+                out = self.work / "real" / folder.name / method.replace(" ", "")
+                runs.append((f"KITTI {label} {method}",
+                             lambda l=label, f=folder, g=gt, m=method, o=out:
+                             (l, m, self.odometry(f, self.root / "config" / "kitti.yaml", m, o,
+                                                  f / g, f / "calib.txt"))))
+        results = []
+        for label, method, figures in self.parallel(runs):
+            figures.update(sequence=label, method=method)
+            results.append(figures)
+        return results
+
+    # -- clustering benchmark (Table I) -----------------------------------------------------
+
+    def clustering(self, quick):
+        bench = self.data / "clustering_bench"
+        settings = [("distance", 3), ("range_difference", 3), ("range_difference", 5)]
+        if quick:
+            settings = settings[:2]
+        runs = []
+        for criterion, window in settings:
+            out = self.work / "clustering" / f"{criterion}_w{window}.json"
+            command = [self.bin / "segmentation_bench", "--points", bench / "points_noground",
+                       "--labels", bench / "labels", "--method", "all", "--criterion", criterion,
+                       "--window", window, "--json", out]
+            runs.append((f"clustering benchmark, {criterion}, w {window}",
+                         lambda c=command, o=out, k=(criterion, window):
+                         (k, self.run_json(c, o))))
+        return [{"criterion": k[0], "window": k[1], "result": r} for k, r in self.parallel(runs)]
+
+    def run_json(self, command, out):
+        if not out.exists():
+            out.parent.mkdir(parents=True, exist_ok=True)
+            self.run(command, out.with_suffix(".log"))
+        return json.loads(out.read_text())
+
+    # -- mu from the range image and from a KD-tree (Fig. 8) --------------------------------
+
+    def degeneration(self, quick):
+        folder = self.work / "sequences" / "green_highway_hdl64e_s1" / "velodyne"
+        files = sorted(folder.glob("*.bin"))[::20 if quick else 10]
+        out = self.work / "fig8_degeneration.txt"
+        if not out.exists():
+            self.run([self.bin / "segment_scans", "--config", self.root / "config" / "kitti.yaml",
+                      "--degeneration"] + files, out)
+        rows = []
+        for line in out.read_text().splitlines()[1:]:
+            fields = line.split()
+            rows.append({"frame": int(pathlib.Path(fields[0]).stem), "mu": float(fields[1]),
+                         "image_ms": float(fields[4]), "mu_kdtree": float(fields[5]),
+                         "kdtree_ms": float(fields[7])})
+        return rows
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--bin", required=True)
+    parser.add_argument("--root", required=True)
+    parser.add_argument("--data", required=True)
+    parser.add_argument("--work", required=True)
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--jobs", type=int, default=2)
+    args = parser.parse_args()
+    runner = Runner(args)
+    started = time.time()
+    results = {"quick": args.quick, "methods": list(METHODS)}
+    try:
+        results["simulated"] = runner.simulated_suite(args.quick)
+        results["real"] = runner.real_kitti()
+        results["clustering"] = runner.clustering(args.quick)
+        results["degeneration"] = runner.degeneration(args.quick)
+    except RuntimeError as error:
+        sys.stderr.write(f"\nexperiments: {error}\n")
+        return 1
+    results["minutes"] = (time.time() - started) / 60.0
+    results["machine"] = f"{os.cpu_count()} cores, {os.uname().sysname} {os.uname().release}"
+    (pathlib.Path(args.work) / "results.json").write_text(json.dumps(results, indent=1))
+    sys.stderr.write(f"\nexperiments: done in {results['minutes']:.1f} min\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
