@@ -3,8 +3,6 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 namespace adaptive_lego_loam {
 
@@ -30,31 +28,6 @@ void ProgressBar::update(int done) {
 
 void ProgressBar::finish() {
   if (enabled_) std::fprintf(stderr, "\n");
-}
-
-namespace {
-
-double status_field_mb(const char* field) {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line)) {
-    if (line.rfind(field, 0) == 0) {
-      std::istringstream in(line.substr(std::string(field).size()));
-      double kilobytes = 0.0;
-      in >> kilobytes;
-      return kilobytes / 1024.0;
-    }
-  }
-  return 0.0;
-}
-
-}  // namespace
-
-double resident_memory_mb() {
-  return status_field_mb("VmRSS:");
-}
-double peak_resident_memory_mb() {
-  return status_field_mb("VmHWM:");
 }
 
 }  // namespace adaptive_lego_loam

@@ -7,6 +7,7 @@
 #include <exception>
 #include <memory>
 
+#include "adaptive_lego_loam/io/process_memory.h"
 #include "adaptive_lego_loam/ros/node_config.h"
 
 namespace adaptive_lego_loam::nodes {
@@ -16,6 +17,7 @@ class GraphNodelet : public nodelet::Nodelet {
  private:
   // A bad config fails the load (nodelet load then exits non-zero, as the node would).
   void onInit() override {
+    return_large_blocks_to_system();  // the manager's process runs for hours too
     ros::NodeHandle& nh = getNodeHandle();
     ros::NodeHandle& private_nh = getPrivateNodeHandle();
     try {

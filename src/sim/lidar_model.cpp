@@ -19,6 +19,12 @@ LidarModel::LidarModel(const SensorParams& sensor, const SimSensorOptions& optio
         "columns = " + std::to_string(options.columns) + ": expected an integer in [16, 20000]");
   check(options.range_noise_m >= 0.0 && options.range_noise_m <= 1.0,
         "range noise = " + std::to_string(options.range_noise_m) + ": expected metres in [0, 1]");
+  check(options.beam_divergence_mrad >= 0.0 && options.beam_divergence_mrad <= 50.0,
+        "beam divergence = " + std::to_string(options.beam_divergence_mrad) +
+            ": expected mrad in [0, 50]");
+  check(options.echo_merge_distance_m >= 0.0 && options.echo_merge_distance_m <= 10.0,
+        "echo merge distance = " + std::to_string(options.echo_merge_distance_m) +
+            ": expected metres in [0, 10]");
   check(options.full_return_incidence_deg > 0.0 &&
             options.full_return_incidence_deg < options.no_return_incidence_deg &&
             options.no_return_incidence_deg <= 90.0,

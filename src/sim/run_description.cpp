@@ -32,6 +32,10 @@ void emit_scenario(YAML::Emitter& out, const ScenarioParams& p) {
   out << YAML::Key << "house_share" << YAML::Value << p.house_share;
   out << YAML::Key << "identical_houses" << YAML::Value << p.identical_houses;
   out << YAML::Key << "planted_verges" << YAML::Value << p.planted_verges;
+  out << YAML::Key << "concrete_median_share" << YAML::Value << p.concrete_median_share;
+  out << YAML::Key << "noise_wall_share" << YAML::Value << p.noise_wall_share;
+  out << YAML::Key << "berm_share" << YAML::Value << p.berm_share;
+  out << YAML::Key << "cutting_share" << YAML::Value << p.cutting_share;
   out << YAML::Key << "junctions_per_km" << YAML::Value << p.junctions_per_km;
   out << YAML::Key << "guard_rails" << YAML::Value << p.guard_rails;
   out << YAML::Key << "tunnel" << YAML::Value << p.tunnel;
@@ -65,6 +69,8 @@ void emit_sensor(YAML::Emitter& out, const RunDescription& run) {
   out << YAML::Key << "full_return_incidence_deg" << YAML::Value << o.full_return_incidence_deg;
   out << YAML::Key << "no_return_incidence_deg" << YAML::Value << o.no_return_incidence_deg;
   out << YAML::Key << "motion_distortion" << YAML::Value << o.motion_distortion;
+  out << YAML::Key << "beam_divergence_mrad" << YAML::Value << o.beam_divergence_mrad;
+  out << YAML::Key << "echo_merge_distance_m" << YAML::Value << o.echo_merge_distance_m;
   out << YAML::EndMap;
 }
 

@@ -109,6 +109,12 @@ ScenarioParams green_highway() {
   p.planted_verges = true;
   p.bushes_per_100m = 45.0;
   p.trees_per_100m = 6.0;
+  // Open verges and fields for the most part, guard rails in the median (SemanticKITTI: a few %
+  // fence, no other structure).
+  p.concrete_median_share = 0.2;
+  p.noise_wall_share = 0.0;
+  p.berm_share = 0.2;
+  p.cutting_share = 0.1;
   return p;
 }
 
@@ -118,15 +124,15 @@ ScenarioParams busy_street() {
   ScenarioParams p = default_scenario(ScenarioKind::kUrban);
   p.name = "busy_street";
   p.cruise_speed_mps = 14.0;
-  p.house_share = 0.8;
-  p.parked_car_share = 0.8;
-  p.moving_cars_per_km_lane = 25.0;
-  p.walkers_per_100m = 10.0;
-  p.standing_people_per_100m = 4.0;
-  p.bushes_per_100m = 30.0;
-  p.trees_per_100m = 8.0;
+  p.house_share = 1.0;
+  p.parked_car_share = 0.2;
+  p.moving_cars_per_km_lane = 10.0;
+  p.walkers_per_100m = 6.0;
+  p.standing_people_per_100m = 3.0;
+  p.bushes_per_100m = 40.0;
+  p.trees_per_100m = 10.0;
   p.poles_per_100m = 8.0;
-  p.junctions_per_km = 5.0;
+  p.junctions_per_km = 3.0;
   return p;
 }
 

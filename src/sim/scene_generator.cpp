@@ -195,7 +195,7 @@ RoadPlan plan_road(const SceneRequest& request, const Path& path, TerrainModel& 
   RoadPlan plan;
   if (p.kind == ScenarioKind::kHighway) {
     Rng rng(derive_seed(request.scene(), kRoadsideStream));
-    plan.highway = plan_highway(path, rng);
+    plan.highway = plan_highway(request.scenario, path, rng);
     terrain.add_berms(highway_berms(plan.highway, p.road_half_width));
   }
   if (p.kind == ScenarioKind::kUrban || p.kind == ScenarioKind::kLoop) {

@@ -32,18 +32,77 @@ void LidarSimulator::make_column_poses(double sweep_start, const Eigen::Isometry
 }
 
 void LidarSimulator::make_rays(int first_column, int width) {
-  const int beams = model_.beams();
-  rays_.resize(static_cast<std::size_t>(beams) * width);
+  const int beams = model_.beams(), footprint = footprint_rays();
+  rays_.resize(static_cast<std::size_t>(beams) * footprint * width);
   const float max_distance = static_cast<float>(model_.sensor().max_range) + 1.0f;
+  const double half_angle = 0.5e-3 * model_.options().beam_divergence_mrad;
   Ray* ray = rays_.data();
   for (int beam = 0; beam < beams; ++beam) {
-    for (int column = first_column; column < first_column + width; ++column, ++ray) {
-      const Eigen::Isometry3d& pose = column_poses_[column];
-      ray->origin = (pose * model_.beam_origin(beam)).cast<float>();
-      ray->direction = (pose.linear() * model_.direction(beam, column)).cast<float>();
-      ray->max_distance = max_distance;
+    for (int k = 0; k < footprint; ++k) {
+      for (int column = first_column; column < first_column + width; ++column, ++ray) {
+        const Eigen::Isometry3d& pose = column_poses_[column];
+        Eigen::Vector3d direction = model_.direction(beam, column);
+        if (k > 0) {
+          // The footprint's rim: left, right, above, below the centre, half the divergence off.
+          const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(direction).normalized();
+          const Eigen::Vector3d up = direction.cross(across);
+          const Eigen::Vector3d offsets[4] = {across, -across, up, -up};
+          direction = (direction + std::tan(half_angle) * offsets[k - 1]).normalized();
+        }
+        ray->origin = (pose * model_.beam_origin(beam)).cast<float>();
+        ray->direction = (pose.linear() * direction).cast<float>();
+        ray->max_distance = max_distance;
+      }
     }
   }
+}
+
+std::optional<Hit> LidarSimulator::strongest_echo(const Hit* hits, int count,
+                                                  std::size_t stride) const {
+  struct Echo {
+    float range, energy;
+    const Hit* hit;
+  };
+  Echo echoes[5];
+  int found = 0;
+  for (int k = 0; k < count; ++k) {
+    const Hit& hit = hits[k * stride];
+    if (!hit.valid() || hit.distance < model_.sensor().min_range ||
+        hit.distance > model_.sensor().max_range)
+      continue;
+    // Received power of a surface filling its share of the footprint: reflectivity over r^2.
+    const float energy = std::max(hit.reflectivity, 0.01f) / (hit.distance * hit.distance);
+    echoes[found++] = {hit.distance, energy, &hit};
+  }
+  if (found == 0) return std::nullopt;
+  if (count == 1) return *echoes[0].hit;
+  std::sort(echoes, echoes + found, [](const Echo& a, const Echo& b) { return a.range < b.range; });
+  const float merge = static_cast<float>(model_.options().echo_merge_distance_m);
+  Hit best;
+  float best_energy = -1.0f;
+  for (int first = 0; first < found;) {
+    // Echoes within the merge distance of the group's nearest make one: a mixed pixel.
+    int last = first;
+    float energy = 0.0f, weighted_range = 0.0f;
+    const Hit* strongest = echoes[first].hit;
+    float strongest_energy = -1.0f;
+    while (last < found && echoes[last].range - echoes[first].range <= merge) {
+      energy += echoes[last].energy;
+      weighted_range += echoes[last].energy * echoes[last].range;
+      if (echoes[last].energy > strongest_energy) {
+        strongest_energy = echoes[last].energy;
+        strongest = echoes[last].hit;
+      }
+      ++last;
+    }
+    if (energy > best_energy) {
+      best_energy = energy;
+      best = *strongest;
+      best.distance = weighted_range / energy;
+    }
+    first = last;
+  }
+  return best;
 }
 
 SimFrame LidarSimulator::render(int frame) {
@@ -84,15 +143,18 @@ void LidarSimulator::render(int frame, SimFrame& out) {
     caster_.cast(rays_.data(), rays_.size(), hits_.data());
     ray_casting_seconds_ +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const int footprint = footprint_rays();
     for (int c = 0; c < width; ++c) {
       const int column = block + c;
       const Eigen::Matrix3f to_sensor = column_poses_[column].linear().transpose().cast<float>();
       const float time = static_cast<float>(model_.column_time(column));
       for (int beam = 0; beam < beams; ++beam) {
-        const std::size_t index = static_cast<std::size_t>(beam) * width + c;
-        if (!add_return(hits_[index], rays_[index].direction, beam, column, rng, out)) continue;
+        // The beam's centre ray; its footprint rays follow `width` apart.
+        const std::size_t index = static_cast<std::size_t>(beam) * footprint * width + c;
+        const std::optional<Hit> echo = strongest_echo(&hits_[index], footprint, width);
+        if (!echo || !add_return(*echo, rays_[index].direction, beam, column, rng, out)) continue;
         out.scan.points.back().time = time;
-        out.normals.push_back(to_sensor * hits_[index].normal);
+        out.normals.push_back(to_sensor * echo->normal);
       }
     }
   }

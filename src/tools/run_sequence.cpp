@@ -20,6 +20,7 @@
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/map_files.h"
 #include "adaptive_lego_loam/io/pose_files.h"
+#include "adaptive_lego_loam/io/process_memory.h"
 #include "adaptive_lego_loam/io/progress.h"
 #include "adaptive_lego_loam/io/scan_sequence.h"
 #include "adaptive_lego_loam/ros/bag_sequence.h"
@@ -75,7 +76,7 @@ class Outputs {
     timing << "frame";
     for (const auto& stage : kStages)
       timing << "," << stage;
-    timing << ",total,rss_mb\n";
+    timing << ",total,rss_mb,heap_mb\n";
     degeneration_.stream() << "frame,mu,beta0_deg,direction_x,direction_y,skeleton_points,"
                               "normals,valid,map_degenerate_directions\n";
     localization_.stream() << "frame,state,match_ratio,alignment,inlier_ratio,inlier_mse\n";
@@ -135,7 +136,8 @@ class Outputs {
     timing << frame.frame;
     for (const auto& stage : kStages)
       timing << "," << frame.times.get(stage);
-    timing << "," << frame.times.total() << "," << resident_memory_mb() << "\n";
+    timing << "," << frame.times.total() << "," << resident_memory_mb() << "," << heap_in_use_mb()
+           << "\n";
     const Degeneration& d = filtered.degeneration;
     degeneration_.stream() << frame.frame << "," << filtered.mu << "," << filtered.beta0_deg << ","
                            << d.weak_direction.x() << "," << d.weak_direction.y() << ","
@@ -461,5 +463,6 @@ int main(int argc, char** argv) {
     return *status;
   }
   if (options.cpu_time) set_stage_clock(Clock::kThreadCpu);
+  return_large_blocks_to_system();
   return tools::run_job("run_sequence", [&] { return run(options); });
 }

@@ -22,8 +22,4 @@ class ProgressBar {
   double last_draw_ms_ = -1e9;
 };
 
-// Resident set size of this process now and at its peak (MB), from /proc/self/status.
-double resident_memory_mb();
-double peak_resident_memory_mb();
-
 }  // namespace adaptive_lego_loam

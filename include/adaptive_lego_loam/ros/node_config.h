@@ -10,6 +10,7 @@
 #include <string>
 
 #include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/io/process_memory.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 
@@ -39,6 +40,7 @@ FrameNames load_frame_names(const ros::NodeHandle& private_nh);
 template <class Node>
 int run_node(int argc, char** argv, const std::string& name) {
   ros::init(argc, argv, name);
+  return_large_blocks_to_system();  // a node runs for hours: its memory follows what it keeps
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
   std::unique_ptr<Node> node;

@@ -21,6 +21,13 @@ struct SimSensorOptions {
   // own firing time (a raw, skewed scan). Off: every ray leaves from the sweep-start pose (a
   // perfectly de-skewed scan, as KITTI ships).
   bool motion_distortion = true;
+  // Beam divergence: the pulse's footprint grows with range (3 mrad: 3 cm at 10 m), and where it
+  // falls on surfaces at different ranges (an edge, foliage) their echoes closer than
+  // echo_merge_distance merge into one at their energy-weighted range (a mixed pixel); the
+  // strongest echo is reported. Each beam casts its centre ray and four at the footprint's rim.
+  // 0: thin beams, one ray each.
+  double beam_divergence_mrad = 0.0;
+  double echo_merge_distance_m = 0.5;
 };
 
 class LidarModel {

@@ -46,6 +46,12 @@ struct ScenarioParams {
   // Highway verges planted along the road (green_highway): a belt of shrubs behind the guard rail
   // and rows of trees behind it, on open and berm stretches (a noise wall or cutting has none).
   bool planted_verges = false;
+  // Highway stretches: the share with a concrete median barrier (else a double guard rail), and
+  // of roadsides with a noise wall, a berm or a cutting (the rest open verges and fields).
+  double concrete_median_share = 0.6;
+  double noise_wall_share = 0.15;
+  double berm_share = 0.15;
+  double cutting_share = 0.2;
   double fences_share = 0.5;  // of gaps between buildings closed by a fence
   double house_share = 0.5;   // of building lots with a detached house rather than a block
   // Every lot the same detached house at the same spacing, without fences or garden plants: a

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/scan.h"
@@ -38,12 +39,18 @@ class LidarSimulator {
 
  private:
   void make_column_poses(double sweep_start, const Eigen::Isometry3d& start_pose);
-  // Rays of columns [first_column, first_column + width), beam by beam, into rays_.
+  // Rays of columns [first_column, first_column + width), beam by beam and per beam footprint ray
+  // by footprint ray (centre first), into rays_.
   void make_rays(int first_column, int width);
+  // The echo a beam reports from its footprint rays' hits (`count` of them, `stride` apart,
+  // the centre first): the strongest after merging echoes closer than the merge distance, at its
+  // energy-weighted range. Nothing when no hit lies within the sensor's range.
+  std::optional<Hit> strongest_echo(const Hit* hits, int count, std::size_t stride) const;
   // Appends the point (without its time) and label of a hit that comes back; false when the
   // return is lost (out of range, grazing incidence).
   bool add_return(const Hit& hit, const Eigen::Vector3f& direction, int beam, int column, Rng& rng,
                   SimFrame& out) const;
+  int footprint_rays() const { return model_.options().beam_divergence_mrad > 0.0 ? 5 : 1; }
 
   LidarModel model_;
   std::shared_ptr<const Trajectory> trajectory_;

@@ -76,19 +76,20 @@ void layout_urban(Layout& l, const std::vector<SideStreet>& side_streets) {
     layout_side_street(l, side_streets[i], static_cast<int>(i) + 1);
 }
 
-std::vector<HighwayStretch> plan_highway(const Path& path, Rng& rng) {
+std::vector<HighwayStretch> plan_highway(const ScenarioParams& p, const Path& path, Rng& rng) {
   std::vector<HighwayStretch> stretches;
+  const double open = 1.0 - p.noise_wall_share - p.berm_share - p.cutting_share;
   for (double s = 0.0; s < path.length();) {
     HighwayStretch stretch;
     stretch.s0 = s;
     stretch.s1 = std::min(path.length(), s + rng.uniform(250.0, 700.0));
-    stretch.concrete_median = rng.chance(0.6);
+    stretch.concrete_median = rng.chance(p.concrete_median_share);
     for (int side = 0; side < 2; ++side) {
       const double draw = rng.uniform();
-      stretch.roadside[side] = draw < 0.5    ? Roadside::kOpen
-                               : draw < 0.65 ? Roadside::kNoiseWall
-                               : draw < 0.8  ? Roadside::kBerm
-                                             : Roadside::kCutting;
+      stretch.roadside[side] = draw < open                        ? Roadside::kOpen
+                               : draw < open + p.noise_wall_share ? Roadside::kNoiseWall
+                               : draw < 1.0 - p.cutting_share     ? Roadside::kBerm
+                                                                  : Roadside::kCutting;
       stretch.height[side] = stretch.roadside[side] == Roadside::kNoiseWall ? rng.uniform(3.0, 5.0)
                                                                             : rng.uniform(2.5, 6.0);
     }

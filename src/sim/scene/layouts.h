@@ -24,7 +24,7 @@ struct HighwayStretch {
 constexpr double kNoiseWallOffset = 2.5;  // behind the road's edge
 constexpr double kBermToeOffset = 6.0;    // past the ditch
 
-std::vector<HighwayStretch> plan_highway(const Path& path, Rng& rng);
+std::vector<HighwayStretch> plan_highway(const ScenarioParams& p, const Path& path, Rng& rng);
 
 std::vector<Berm> highway_berms(const std::vector<HighwayStretch>& stretches, double half_width);
 
