@@ -254,7 +254,7 @@ struct LoopClosureParams {
 struct LocalizationParams {
   // Tracking holds while at least this share of the scan's features find a line or plane in the
   // map; lost_after_scans scans in a row below it and the localization is lost.
-  double min_match_ratio = 0.5;
+  double min_match_ratio = 0.3;
   int lost_after_scans = 5;
   // While lost (or at the start) the scan is aligned by ICP from the predicted pose to the map's
   // keyframes near it (the nearest within search_radius and its neighbours, as a loop candidate's
