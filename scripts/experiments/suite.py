@@ -210,6 +210,31 @@ class Runner:
             self.run(command, out.with_suffix(".log"))
         return json.loads(out.read_text())
 
+    # -- what each threshold drops, per class (looking at the clouds) -----------------------
+
+    def point_flags(self, quick):
+        """segment_scans --point-flags on every 10th scan of seed 1 of the two scenes the paper
+        discriminates, per threshold: which points each keeps and drops."""
+        runs = []
+        for scenario in ["green_highway", "busy_street"]:
+            for sensor, config in SENSORS.items():
+                sequence = self.work / "sequences" / f"{scenario}_{sensor}_s1"
+                files = sorted((sequence / "velodyne").glob("*.bin"))[::10]
+                for setting in ["10", "30", "60", "adaptive"]:
+                    out = self.work / "flags" / f"{scenario}_{sensor}" / setting
+                    threshold = ["--adaptive"] if setting == "adaptive" else ["--beta0", setting]
+                    command = ([self.bin / "segment_scans", "--config", self.root / "config" / config]
+                               + threshold + ["--point-flags", out] + files)
+                    runs.append((f"point flags {scenario} {sensor} {setting}",
+                                 lambda c=command, o=out: self.run_once(c, o)))
+        self.parallel(runs)
+        return str(self.work / "flags")
+
+    def run_once(self, command, out):
+        if not (out / "done").exists():
+            self.run(command, out.parent / f"{out.name}.log")
+            (out / "done").write_text("")
+
     # -- mu from the range image and from a KD-tree (Fig. 8) --------------------------------
 
     def degeneration(self, quick):
@@ -245,6 +270,7 @@ def main():
         results["real"] = runner.real_kitti()
         results["clustering"] = runner.clustering(args.quick)
         results["degeneration"] = runner.degeneration(args.quick)
+        results["flags"] = runner.point_flags(args.quick)
     except RuntimeError as error:
         sys.stderr.write(f"\nexperiments: {error}\n")
         return 1

@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "adaptive_lego_loam/core/ambient/ambient_filter.h"
@@ -63,6 +64,25 @@ void print_degeneration(Config config, const std::vector<std::string>& files) {
   }
 }
 
+// Per point of `scan`: 0 not in the range image (invalid, out of range, lost its cell), 1 ground,
+// 2 in a kept cluster, 3 in a dropped one; written as one byte a point to DIR/<scan name>.flags.
+void write_point_flags(const std::string& dir, const std::string& file, const Scan& scan,
+                       const SegmentationResult& result) {
+  std::vector<uint8_t> flags(scan.points.size(), 0);
+  const RangeImage& image = result.image;
+  for (int cell = 0; cell < image.size(); ++cell) {
+    if (!image.occupied(cell)) continue;
+    flags[image.source_index(cell)] =
+        result.ground[cell] ? 1 : (result.clusters.point_kept(cell) ? 2 : 3);
+  }
+  const std::filesystem::path path =
+      std::filesystem::path(dir) / (std::filesystem::path(file).stem().string() + ".flags");
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(flags.data()),
+            static_cast<std::streamsize>(flags.size()));
+  if (!out) throw IoError(path.string() + ": cannot write");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -75,6 +95,13 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_path, "sensor config (config/*.yaml)")->required();
   app.add_option("--beta0", beta0_deg, "depth-clustering threshold in degrees (default: config)")
       ->check(CLI::Range(0.1, 89.9));
+  bool adaptive = false;
+  app.add_flag("--adaptive", adaptive, "the adaptive beta0 of the ambient filter instead")
+      ->excludes("--beta0");
+  std::string flags_dir;
+  app.add_option("--point-flags", flags_dir,
+                 "write per scan a byte per point to DIR/<scan>.flags: 0 not projected, 1 ground, "
+                 "2 kept, 3 dropped");
   bool degeneration = false;
   app.add_flag("--degeneration", degeneration,
                "print mu from the range image (the ambient filter) and from a KD-tree over every "
@@ -91,17 +118,23 @@ int main(int argc, char** argv) {
       print_degeneration(config, files);
       return tools::kExitOk;
     }
-    Segmenter segmenter(config.sensor, config.segmentation);
-    SegmentationResult result;
-    std::printf("sensor %s (%d x %d), beta0 %.1f deg\n", config.sensor.name.c_str(),
-                config.sensor.rows, config.sensor.columns, beta0_deg);
+    if (!flags_dir.empty()) std::filesystem::create_directories(flags_dir);
+    Config filter_config = config;
+    filter_config.ambient.mode = adaptive ? Beta0Mode::kAdaptive : Beta0Mode::kFixed;
+    filter_config.ambient.fixed_beta0_deg = beta0_deg;
+    AmbientFilter filter(filter_config);
+    AmbientFilterResult filtered;
+    const SegmentationResult& result = filtered.segmentation;
+    char threshold[32] = "adaptive";
+    if (!adaptive) std::snprintf(threshold, sizeof(threshold), "%.1f deg", beta0_deg);
+    std::printf("sensor %s (%d x %d), beta0 %s\n", config.sensor.name.c_str(), config.sensor.rows,
+                config.sensor.columns, threshold);
     std::printf("%-24s %8s %8s %8s %8s %10s %8s %8s %8s %8s %8s\n", "frame", "points", "valid",
                 "ground", "kept", "clusters", "proj_ms", "grnd_ms", "depth_ms", "cloud_ms",
                 "total_ms");
     for (const std::string& file : files) {
       const Scan scan = read_scan_file(file);
-      segmenter.project_and_mark_ground(scan, result);
-      segmenter.cluster_and_build(scan, beta0_deg, result);
+      filter.process(scan, filtered);
       const std::string name = std::filesystem::path(file).filename().string();
       const std::string problem = projection_problem(result.image.stats());
       if (!problem.empty()) {
@@ -114,6 +147,7 @@ int main(int argc, char** argv) {
                   result.clusters.kept_points(), result.clusters.kept_clusters(),
                   result.clusters.clusters(), t.get("projection"), t.get("ground"),
                   t.get("depth_clustering"), t.get("segmented_cloud"), t.total());
+      if (!flags_dir.empty()) write_point_flags(flags_dir, file, scan, result);
     }
     return tools::kExitOk;
   });
