@@ -45,10 +45,12 @@ namespace {
 
 constexpr int kMalformedAfterScan = 2;  // the bad clouds go between scans 2 and 3
 constexpr double kReplayShift = 10.0;   // s: the replayed scans are this much older
+constexpr int kEmptyFrameScan = 1;      // sent with an empty frame_id
 
 // What the checker saw on the graph's outputs.
 struct Recording {
   std::map<ros::Time, Eigen::Isometry3d> mapped, integrated;
+  std::map<ros::Time, std::string> mapped_child_frame;
   std::map<ros::Time, DegenerationState> degeneration;
   std::vector<std::string> image_projection_warnings;
   std::vector<std::string> time_jump_warnings;  // "time went back", from any stage
@@ -152,6 +154,7 @@ class Player {
     subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
         "/aft_mapped_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
           recording_.mapped[m->header.stamp] = pose_of(*m);
+          recording_.mapped_child_frame[m->header.stamp] = m->child_frame_id;
         }));
     subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
         "/integrated_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
@@ -276,7 +279,10 @@ class Graph : public ::testing::Test {
     if (!graph_ready_) return;
     degeneration_subscribers_ = registered_nodes(1, "/degeneration");
     for (std::size_t i = 0; i < bag_.clouds.size(); ++i) {
-      recording_.every_scan_mapped &= player.play(bag_.clouds[i]);
+      sensor_msgs::PointCloud2 cloud = bag_.clouds[i];
+      // A driver that leaves the frame empty: the stages take ~sensor_frame (velodyne).
+      if (static_cast<int>(i) == kEmptyFrameScan) cloud.header.frame_id.clear();
+      recording_.every_scan_mapped &= player.play(cloud);
       if (static_cast<int>(i) != kMalformedAfterScan) continue;
       std_msgs::Header header = bag_.clouds[i].header;
       header.stamp += ros::Duration(0.03);
@@ -394,6 +400,13 @@ TEST_F(Graph, TimeGoingBackStartsEveryStageOverWithAWarning) {
     ASSERT_NE(it, recording_.mapped.end()) << "replayed scan " << i;
     EXPECT_LT((it->second.translation() - offline_[i].translation()).norm(), 1e-6) << i;
   }
+}
+
+TEST_F(Graph, AScanWithAnEmptyFrameIsMappedInTheSensorFrame) {
+  const ros::Time stamp = bag_.clouds[kEmptyFrameScan].header.stamp;
+  ASSERT_TRUE(recording_.mapped_child_frame.count(stamp));
+  EXPECT_EQ(recording_.mapped_child_frame.at(stamp), "velodyne");
+  EXPECT_EQ(recording_.mapped_child_frame.at(bag_.clouds.back().header.stamp), "velodyne");
 }
 
 TEST_F(Graph, MapOptimizationPairsTheDegenerationOnlyWithThePrior) {

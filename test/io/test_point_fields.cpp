@@ -36,6 +36,25 @@ TEST(PointFields, DecodesIntegerRingAndNanosecondTime) {
   EXPECT_EQ(scan.points[1].z, 6.f);
 }
 
+// Coordinates as 16-bit integers (as some drivers pack them) are read as the numbers they hold.
+TEST(PointFields, Int16CoordinatesAreReadAsNumbers) {
+  struct Record {
+    int16_t x, y, z;
+  } __attribute__((packed));
+  const Record records[2] = {{1, -2, 3}, {-300, 400, -5}};
+  PackedPoints packed;
+  packed.fields = {{"x", 0, 3, 1}, {"y", 2, 3, 1}, {"z", 4, 3, 1}};
+  packed.data = reinterpret_cast<const uint8_t*>(records);
+  packed.data_size = sizeof(records);
+  packed.width = 2;
+  packed.point_step = sizeof(Record);
+  const Scan scan = decode_points(packed, "test");
+  ASSERT_EQ(scan.points.size(), 2u);
+  EXPECT_EQ(scan.points[0].y, -2.f);
+  EXPECT_EQ(scan.points[1].x, -300.f);
+  EXPECT_FALSE(scan.has_ring || scan.has_time);
+}
+
 TEST(PointFields, ShortDataAndFieldPastStepAreErrors) {
   float values[3] = {1, 2, 3};
   PackedPoints packed;
@@ -68,7 +87,7 @@ Rows xyz_rows(uint32_t width, uint32_t height, uint32_t padding) {
       const auto* bytes = reinterpret_cast<const uint8_t*>(xyz);
       rows.bytes.insert(rows.bytes.end(), bytes, bytes + sizeof(xyz));
     }
-    rows.bytes.insert(rows.bytes.end(), padding, 0xee);
+    rows.bytes.resize(rows.bytes.size() + padding, 0xee);
   }
   rows.packed.fields = {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}};
   rows.packed.data = rows.bytes.data();

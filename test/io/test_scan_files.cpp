@@ -62,6 +62,12 @@ TEST(ScanFiles, ReadsVlp16PcdWithChannelAsRing) {
   EXPECT_EQ(max_ring, 15);
 }
 
+TEST(ScanFiles, AnEmptyKittiBinIsAScanWithoutPoints) {
+  const std::string path = temp_path("empty.bin");
+  std::ofstream(path, std::ios::binary | std::ios::trunc).close();
+  EXPECT_TRUE(read_kitti_bin(path).points.empty());
+}
+
 TEST(ScanFiles, PcdWithoutZIsAClearError) {
   const std::string path = temp_path("no_z.pcd");
   std::ofstream(path) << "VERSION 0.7\nFIELDS x y\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 1\n"

@@ -104,3 +104,30 @@ TEST(RunSequenceOutputs, AMapFolderThatHoldsSomethingElseStopsTheRunFirst) {
   EXPECT_EQ(read_file(folder / "notes.txt"), "keep me\n");
   EXPECT_FALSE(fs::exists(out / "poses_kitti.txt")) << "the run should not have started";
 }
+
+// A recording paused for three minutes between scans 2 and 3: the gap is counted (1 800 scans
+// missing at 10 Hz) and, the scans being what they are, no pose changes.
+TEST(RunSequenceOutputs, ATimeGapOfMinutesIsCountedAndChangesNoPose) {
+  const std::string input = std::string(TEST_DATA_DIR) + "/kitti_seq07";
+  const fs::path paused = temp_path("paused_seq");
+  fs::remove_all(paused);
+  fs::copy(input, paused, fs::copy_options::recursive);
+  std::istringstream times(read_file(paused / "times.txt"));
+  std::ostringstream shifted;
+  shifted.precision(12);
+  int line = 0;
+  for (double t; times >> t; ++line)
+    shifted << (line >= 3 ? t + 180.0 : t) << "\n";
+  std::ofstream(paused / "times.txt") << shifted.str();
+  const fs::path plain = temp_path("outputs_plain"), gap = temp_path("outputs_gap");
+  fs::remove_all(plain);
+  fs::remove_all(gap);
+  ASSERT_EQ(run_command(run_sequence("--input " + input + " --output " + plain.string())).first, 0);
+  const auto [status, output] =
+      run_command(run_sequence("--input " + paused.string() + " --output " + gap.string()));
+  ASSERT_EQ(status, 0) << output;
+  const nlohmann::json summary = nlohmann::json::parse(read_file(gap / "summary.json"));
+  EXPECT_EQ(summary["input_stamps"]["gaps"], 1);
+  EXPECT_EQ(summary["input_stamps"]["missing_scans"], 1800);
+  EXPECT_EQ(read_file(gap / "poses_kitti.txt"), read_file(plain / "poses_kitti.txt"));
+}

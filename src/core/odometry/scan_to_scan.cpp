@@ -26,14 +26,23 @@ Eigen::Vector3f moved_point(const CloudPoint& p, const Eigen::Isometry3d& pose) 
   return (pose * position(p)).cast<float>();
 }
 
-// Correspondences whose point, moved by `pose`, lies within kInlierDistance of its line or plane.
-int count_inliers(const Correspondences& matches, const Eigen::Isometry3d& pose) {
+// Inliers among the correspondences across the x axis. The ground and the walls and rails
+// along the road fit every guess along x alike, and outnumber the rest: counted too, their
+// small differences in fit (of roll, pitch, height) would outvote what tells guesses apart.
+int count_inliers_across_x(const Correspondences& matches, const Eigen::Isometry3d& pose) {
   constexpr double kInlierDistance = 0.1;  // m
+  constexpr double kMinAngleToX = 30.0 * M_PI / 180.0;
+  const double min_normal_x = std::sin(kMinAngleToX);     // a plane's normal, from the y-z plane
+  const double max_direction_x = std::cos(kMinAngleToX);  // a line's direction, from x
   int inliers = 0;
-  for (const LineMatch& m : matches.lines)
+  for (const LineMatch& m : matches.lines) {
+    if (std::abs(m.direction.x()) > max_direction_x) continue;
     inliers += ((pose * m.point - m.through).cross(m.direction)).norm() < kInlierDistance;
-  for (const PlaneMatch& m : matches.planes)
+  }
+  for (const PlaneMatch& m : matches.planes) {
+    if (std::abs(m.normal.x()) < min_normal_x) continue;
     inliers += std::abs(m.normal.dot(pose * m.point) + m.offset) < kInlierDistance;
+  }
   return inliers;
 }
 
@@ -149,7 +158,7 @@ OdometryResult ScanToScanOdometry::align(const FeatureSet& current, const Eigen:
   result.plane_matches = static_cast<int>(matches.planes.size());
   result.registered = result.edge_matches + result.plane_matches >= 10;
   if (result.registered) result.motion = euler_vector_to_pose(pose);
-  result.inliers = count_inliers(matches, euler_vector_to_pose(pose));
+  result.inliers_across_x = count_inliers_across_x(matches, euler_vector_to_pose(pose));
   return result;
 }
 
@@ -176,15 +185,15 @@ OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
     if (guesses.size() == 1) {
       result = align(current, guesses.front(), iterations);
     } else {
-      // Each guess converges to its nearest fit; the one with the most features on their lines
-      // and planes is refined with the full searches. A repeating structure fits at every alias,
-      // so what does not repeat (and the ground, which fits everywhere alike) decides.
+      // Each guess converges to its nearest fit; the one with the most features across x on
+      // their lines and planes is refined with the full searches. A repeating structure fits at
+      // every alias, so what does not repeat decides.
       int best_inliers = -1;
       Eigen::Isometry3d best = guesses.front();
       for (const Eigen::Isometry3d& guess : guesses) {
         const OdometryResult candidate = align(current, guess, params_.max_iterations);
-        if (candidate.registered && candidate.inliers > best_inliers) {
-          best_inliers = candidate.inliers;
+        if (candidate.registered && candidate.inliers_across_x > best_inliers) {
+          best_inliers = candidate.inliers_across_x;
           best = candidate.motion;
         }
       }

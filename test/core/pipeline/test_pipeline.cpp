@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
 #include "adaptive_lego_loam/eval/metrics.h"
 #include "adaptive_lego_loam/io/pose_files.h"
@@ -75,4 +77,46 @@ TEST(Pipeline, SameInputGivesIdenticalPoses) {
   for (std::size_t i = 0; i < first.size(); ++i) {
     EXPECT_TRUE(first[i].matrix() == second[i].matrix()) << "frame " << i;
   }
+}
+
+// Between real scans: an empty scan (a .bin of 0 bytes) and one of two million points (a driver
+// gone wrong, or a merge of many sweeps). The empty one gets a predicted pose and is counted; the
+// big one fills the range image, counts what it could not place, and is processed; the scans after
+// them are tracked.
+TEST(Pipeline, AnEmptyScanAndOneOfTwoMillionPointsAreProcessedAndCounted) {
+  const Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  Pipeline pipeline(config);
+  const std::vector<double> times = read_kitti_times(kSequence + "/times.txt");
+  const auto files = list_scan_files(kSequence + "/velodyne");
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> coordinate(-60.f, 60.f), height(-2.f, 3.f);
+  int frames = 0;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    Scan scan = read_kitti_bin(files[i]);
+    scan.stamp = times[i];
+    EXPECT_TRUE(pipeline.process(scan).valid_scan) << "scan " << i;
+    ++frames;
+    if (i != 1) continue;
+    Scan empty = parse_kitti_bin("", "empty.bin");
+    empty.stamp = times[i] + 0.03;
+    EXPECT_FALSE(pipeline.process(empty).valid_scan);
+    ++frames;
+    Scan huge;
+    huge.stamp = times[i] + 0.06;
+    huge.points.resize(2'000'000);
+    for (ScanPoint& p : huge.points) {
+      p.x = coordinate(random);
+      p.y = coordinate(random);
+      p.z = height(random);
+    }
+    EXPECT_TRUE(pipeline.process(huge).valid_scan);
+    const ProjectionStats& stats = pipeline.filter_result().segmentation.image.stats();
+    EXPECT_EQ(stats.input_points, 2'000'000);
+    EXPECT_LE(stats.projected, config.sensor.rows * config.sensor.columns);
+    EXPECT_EQ(stats.projected + stats.collisions + stats.out_of_range + stats.outside_rows +
+                  stats.non_finite,
+              2'000'000);
+    ++frames;
+  }
+  EXPECT_EQ(static_cast<int>(pipeline.trajectory().size()), frames);
 }

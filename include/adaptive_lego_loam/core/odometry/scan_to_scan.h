@@ -21,7 +21,9 @@ struct OdometryResult {
   int edge_matches = 0;
   int plane_matches = 0;
   int iterations = 0;
-  int inliers = 0;          // correspondences within 0.1 m of their line or plane at the result
+  // Correspondences that constrain motion along the sensor's x axis (a plane facing it, a line
+  // across it) within 0.1 m of their line or plane at the result.
+  int inliers_across_x = 0;
   bool registered = false;  // false for the first scan or when too few matches were found
 };
 
@@ -31,7 +33,8 @@ class ScanToScanOdometry {
   // Registers `current` against the previous scan's features, starting from `guess` (the motion
   // from the previous scan to this one); then keeps `current` as the previous scan.
   OdometryResult register_scan(const FeatureSet& current, const Eigen::Isometry3d& guess);
-  // The same from each of `guesses` in turn: the result with the most inliers is kept.
+  // The same from each of `guesses` (motions along the sensor's x axis) in turn: the result with
+  // the most inliers across x is refined and kept.
   OdometryResult register_scan(const FeatureSet& current,
                                const std::vector<Eigen::Isometry3d>& guesses);
   void reset();
