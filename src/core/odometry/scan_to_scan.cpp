@@ -187,7 +187,7 @@ OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
     } else {
       // Each guess converges to its nearest fit; the one with the most features across x on
       // their lines and planes is refined with the full searches. A repeating structure fits at
-      // every alias, so what does not repeat decides.
+      // every alias, so what does not repeat decides, if there is enough of it.
       int best_inliers = -1;
       Eigen::Isometry3d best = guesses.front();
       for (const Eigen::Isometry3d& guess : guesses) {
@@ -197,6 +197,7 @@ OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
           best = candidate.motion;
         }
       }
+      if (best_inliers < params_.start_search_min_inliers) best = guesses.front();
       result = align(current, best, iterations);
     }
   }

@@ -174,9 +174,10 @@ TEST(SimOdometry, AHighwayEnteredAtSpeedIsTrackedFromItsFirstScan) {
   for (int i = first; i < first + frames; ++i)
     request.trajectory_times.push_back(times[i] - times[first]);
   const std::vector<SimFrame> scans = simulate(request, frames);
-  auto run = [&](double start_search_max_speed) {
+  auto run = [&](double start_search_max_speed, int start_search_min_inliers = 50) {
     Config config = kitti_config();
     config.odometry.start_search_max_speed = start_search_max_speed;
+    config.odometry.start_search_min_inliers = start_search_min_inliers;
     const Drive result = drive(config, scans);
     const double first_step = ((result.truth[0].inverse() * result.truth[1]).inverse() *
                                (result.estimate[0].inverse() * result.estimate[1]))
@@ -195,4 +196,8 @@ TEST(SimOdometry, AHighwayEnteredAtSpeedIsTrackedFromItsFirstScan) {
   ASSERT_GE(searched, 0.0) << "the path must exceed 100 m";
   EXPECT_LT(searched, 1.0);
   EXPECT_LT(searched_first, 0.2);
+  // Asked for more evidence across x than the scans hold, the search keeps the zero guess.
+  const auto [unsure, unsure_first] = run(40.0, 1000000);
+  EXPECT_EQ(unsure, from_zero);
+  EXPECT_EQ(unsure_first, from_zero_first);
 }

@@ -119,9 +119,12 @@ struct OdometryParams {
   // A start in motion (a bag, a node restarted at speed): the first pair of scans is registered
   // from guesses every start_search_step along the sensor's x axis up to start_search_max_speed,
   // and the result that fits best is kept; from zero alone it would settle on the nearest alias
-  // of a repeating structure (guard-rail posts). 0: from zero alone.
+  // of a repeating structure (guard-rail posts). 0: from zero alone. The best fit replaces the
+  // zero guess only with at least start_search_min_inliers correspondences across x: with fewer
+  // (a VLP-16 beside a highway has about ten) the guesses cannot be told apart.
   double start_search_max_speed = 40.0;  // m/s
   double start_search_step = 0.5;        // m
+  int start_search_min_inliers = 50;
 };
 
 // Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).

@@ -33,8 +33,9 @@ class ScanToScanOdometry {
   // Registers `current` against the previous scan's features, starting from `guess` (the motion
   // from the previous scan to this one); then keeps `current` as the previous scan.
   OdometryResult register_scan(const FeatureSet& current, const Eigen::Isometry3d& guess);
-  // The same from each of `guesses` (motions along the sensor's x axis) in turn: the result with
-  // the most inliers across x is refined and kept.
+  // The same from each of `guesses` (motions along the sensor's x axis, the first one zero) in
+  // turn: the result with the most inliers across x is refined and kept, if it has
+  // start_search_min_inliers of them; else the registration from the first guess.
   OdometryResult register_scan(const FeatureSet& current,
                                const std::vector<Eigen::Isometry3d>& guesses);
   void reset();
