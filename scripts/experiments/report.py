@@ -392,7 +392,22 @@ class Report:
 
     # -- the page ------------------------------------------------------------------------------
 
+    def mean_degeneration(self):
+        """mu/SCENARIO/SENSOR and beta0/SCENARIO/SENSOR: the adaptive runs' means over valid
+        scans and seeds, for the discussion."""
+        for (scenario, sensor), runs in self.by_cell().items():
+            mus, betas = [], []
+            for run in runs.get("adaptive", []):
+                with open(pathlib.Path(run["output"]) / "degeneration.csv") as rows:
+                    for row in csv.DictReader(rows):
+                        if row["valid"] == "1":
+                            mus.append(float(row["mu"]))
+                            betas.append(float(row["beta0_deg"]))
+            self.values[f"mu/{scenario}/{sensor}"] = mean(mus)
+            self.values[f"beta0/{scenario}/{sensor}"] = mean(betas)
+
     def discussion(self):
+        self.mean_degeneration()
         text = (pathlib.Path(__file__).parent / "discussion.md").read_text()
 
         def value(match):
@@ -436,16 +451,11 @@ r_err (deg/100 m):
 
 {self.r_err_table(sensor)}
 """)
-        sections.append(f"""t_err (%) per seed, HDL-64E:
-
-Green highway:
-
-{self.per_seed_table('green_highway', 'hdl64e')}
-
-Busy street:
-
-{self.per_seed_table('busy_street', 'hdl64e')}
-""")
+        per_seed = [("green_highway", "hdl64e"), ("busy_street", "hdl64e"),
+                    ("busy_street", "vlp16"), ("vegetation", "vlp16")]
+        sections.append("t_err (%) per seed:\n\n" + "\n".join(
+            f"{SCENARIO_NAMES[scenario][0].upper()}{SCENARIO_NAMES[scenario][1:]}, {SENSOR_NAMES[sensor]}:\n\n"
+            f"{self.per_seed_table(scenario, sensor)}\n" for scenario, sensor in per_seed))
         for scenario, name in (("green_highway", "highway"), ("busy_street", "street")):
             path = self.figure_errors(scenario, "hdl64e", name)
             if path:
