@@ -5,6 +5,7 @@
 
 #include <ros/ros.h>
 
+#include <cstdio>
 #include <exception>
 #include <memory>
 #include <string>
@@ -39,6 +40,9 @@ FrameNames load_frame_names(const ros::NodeHandle& private_nh);
 // holds the loader's message.
 template <class Node>
 int run_node(int argc, char** argv, const std::string& name) {
+  // Each log line out at once when stdout is a file or a pipe (roslaunch piped to tee, a
+  // service's journal), not in blocks that a node stopped by a signal never writes.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   ros::init(argc, argv, name);
   return_large_blocks_to_system();  // a node runs for hours: its memory follows what it keeps
   ros::NodeHandle nh;

@@ -124,7 +124,7 @@ struct OdometryParams {
   // (a VLP-16 beside a highway has about ten) the guesses cannot be told apart.
   double start_search_max_speed = 40.0;  // m/s
   double start_search_step = 0.5;        // m
-  int start_search_min_inliers = 50;
+  int start_search_min_inliers = 20;
 };
 
 // Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).
