@@ -1,5 +1,7 @@
 #include "adaptive_lego_loam/ros/node_config.h"
 
+#include <csignal>
+
 #include <ros/package.h>
 
 #include <algorithm>
@@ -61,6 +63,18 @@ FrameNames load_frame_names(const ros::NodeHandle& private_nh) {
   private_nh.param("base_frame", frames.base, frames.base);
   private_nh.param("sensor_frame", frames.sensor, frames.sensor);
   return frames;
+}
+
+namespace {
+volatile std::sig_atomic_t stop_requested = 0;
+}  // namespace
+
+void request_node_stop(int) {
+  stop_requested = 1;
+}
+
+bool node_stop_requested() {
+  return stop_requested != 0;
 }
 
 }  // namespace adaptive_lego_loam::ros_bridge

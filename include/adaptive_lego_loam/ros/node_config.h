@@ -3,8 +3,10 @@
 // YAML path; else ~sensor, the name of one of the package's config/*.yaml), the frame names,
 // and the shared start-up of main().
 
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -35,15 +37,23 @@ struct FrameNames {
 // ~map_frame, ~odom_frame, ~base_frame, ~sensor_frame.
 FrameNames load_frame_names(const ros::NodeHandle& private_nh);
 
-// main() of every node: ros::init, the node object built from the config, ros::spin. A bad
-// config or any other start-up error stops the node with exit status 1 and a FATAL line that
-// holds the loader's message.
-template <class Node>
+// Set by SIGINT and SIGTERM in a node's process (run_node).
+void request_node_stop(int signal);
+bool node_stop_requested();
+
+// main() of every node: ros::init, the node object built from the config, callbacks until
+// Ctrl-C (SIGINT) or SIGTERM. A bad config or any other start-up error stops the node with exit
+// status 1 and a FATAL line that holds the loader's message. The node object is destroyed before
+// ROS shuts down, so that what it logs on exit (its summary, the map saved on exit) is written:
+// roscpp's own SIGINT handler would shut the logging down first.
+template <typename Node>
 int run_node(int argc, char** argv, const std::string& name) {
   // Each log line out at once when stdout is a file or a pipe (roslaunch piped to tee, a
   // service's journal), not in blocks that a node stopped by a signal never writes.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  ros::init(argc, argv, name);
+  ros::init(argc, argv, name, ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, request_node_stop);
+  std::signal(SIGTERM, request_node_stop);
   return_large_blocks_to_system();  // a node runs for hours: its memory follows what it keeps
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
@@ -54,7 +64,10 @@ int run_node(int argc, char** argv, const std::string& name) {
     ROS_FATAL("%s: %s", ros::this_node::getName().c_str(), e.what());
     return 1;
   }
-  ros::spin();
+  while (ros::ok() && !node_stop_requested())
+    ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.1));
+  node.reset();
+  ros::shutdown();
   return 0;
 }
 
