@@ -37,16 +37,21 @@ Eigen::Isometry3d motion_of(double x, double y, double yaw_deg) {
   return motion;
 }
 
-FeatureSet features_at(const Eigen::Isometry3d& pose) {
+// The features of `scene` seen by a 16-beam sensor at `pose`.
+FeatureSet features_in(const Scene& scene, const Eigen::Isometry3d& pose) {
   const SensorParams sensor = test::even_sensor(16, 1800, -15.0, 15.0);
   Segmenter segmenter(sensor, SegmentationParams());
   SegmentationResult segmentation;
-  segmenter.process(test::render(sensor, yard(), pose), segmentation);
+  segmenter.process(test::render(sensor, scene, pose), segmentation);
   FeatureExtractor extractor{FeatureParams()};
   FeatureSet features;
   extractor.extract(segmentation.cloud, segmentation.cloud.points, segmentation.cloud.outliers,
                     features);
   return features;
+}
+
+FeatureSet features_at(const Eigen::Isometry3d& pose) {
+  return features_in(yard(), pose);
 }
 
 // Within what mapping needs of its guess (it searches 1 m around each point). Not much tighter:
@@ -122,15 +127,7 @@ Scene post_rows() {
 }
 
 FeatureSet post_features_at(const Eigen::Isometry3d& pose) {
-  const SensorParams sensor = test::even_sensor(16, 1800, -15.0, 15.0);
-  Segmenter segmenter(sensor, SegmentationParams());
-  SegmentationResult segmentation;
-  segmenter.process(test::render(sensor, post_rows(), pose), segmentation);
-  FeatureExtractor extractor{FeatureParams()};
-  FeatureSet features;
-  extractor.extract(segmentation.cloud, segmentation.cloud.points, segmentation.cloud.outliers,
-                    features);
-  return features;
+  return features_in(post_rows(), pose);
 }
 
 }  // namespace
