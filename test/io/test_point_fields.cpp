@@ -14,6 +14,22 @@ using namespace adaptive_lego_loam;
 using namespace adaptive_lego_loam::test;
 namespace fs = std::filesystem;
 
+namespace {
+
+// `records` (a packed struct per point) as one row of points described by `fields`.
+template <typename Record, std::size_t N>
+PackedPoints packed_rows(const Record (&records)[N], std::vector<FieldDescription> fields) {
+  PackedPoints packed;
+  packed.fields = std::move(fields);
+  packed.data = reinterpret_cast<const uint8_t*>(records);
+  packed.data_size = sizeof(records);
+  packed.width = N;
+  packed.point_step = sizeof(Record);
+  return packed;
+}
+
+}  // namespace
+
 TEST(PointFields, DecodesIntegerRingAndNanosecondTime) {
   struct Record {
     float x, y, z;
@@ -21,13 +37,9 @@ TEST(PointFields, DecodesIntegerRingAndNanosecondTime) {
     uint32_t t;
   } __attribute__((packed));
   Record records[2] = {{1, 2, 3, 7, 50000000}, {4, 5, 6, 9, 0}};
-  PackedPoints packed;
-  packed.fields = {
-      {"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"ring", 12, 4, 1}, {"t", 14, 6, 1}};
-  packed.data = reinterpret_cast<const uint8_t*>(records);
-  packed.data_size = sizeof(records);
-  packed.width = 2;
-  packed.point_step = sizeof(Record);
+  const PackedPoints packed = packed_rows(
+      records,
+      {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"ring", 12, 4, 1}, {"t", 14, 6, 1}});
   const Scan scan = decode_points(packed, "test");
   ASSERT_EQ(scan.points.size(), 2u);
   EXPECT_TRUE(scan.has_ring && scan.has_time);
@@ -42,12 +54,8 @@ TEST(PointFields, Int16CoordinatesAreReadAsNumbers) {
     int16_t x, y, z;
   } __attribute__((packed));
   const Record records[2] = {{1, -2, 3}, {-300, 400, -5}};
-  PackedPoints packed;
-  packed.fields = {{"x", 0, 3, 1}, {"y", 2, 3, 1}, {"z", 4, 3, 1}};
-  packed.data = reinterpret_cast<const uint8_t*>(records);
-  packed.data_size = sizeof(records);
-  packed.width = 2;
-  packed.point_step = sizeof(Record);
+  const PackedPoints packed =
+      packed_rows(records, {{"x", 0, 3, 1}, {"y", 2, 3, 1}, {"z", 4, 3, 1}});
   const Scan scan = decode_points(packed, "test");
   ASSERT_EQ(scan.points.size(), 2u);
   EXPECT_EQ(scan.points[0].y, -2.f);
@@ -139,12 +147,8 @@ TEST(PointFields, RingBeyondInt32ReadsAsNoLaser) {
     uint32_t ring;
   };
   const Record records[2] = {{1, 2, 3, 4294967295u}, {4, 5, 6, 12}};
-  PackedPoints packed;
-  packed.fields = {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"ring", 12, 6, 1}};
-  packed.data = reinterpret_cast<const uint8_t*>(records);
-  packed.data_size = sizeof(records);
-  packed.width = 2;
-  packed.point_step = sizeof(Record);
+  const PackedPoints packed =
+      packed_rows(records, {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"ring", 12, 6, 1}});
   const Scan scan = decode_points(packed, "/points");
   ASSERT_EQ(scan.points.size(), 2u);
   EXPECT_EQ(scan.points[0].ring, -1);
