@@ -1,4 +1,5 @@
 #include "feature_association.h"
+#include "node_entry_points.h"
 
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
@@ -126,6 +127,10 @@ void FeatureAssociationNode::publish(const std_msgs::Header& header) {
   odometry_header.frame_id = frames_.odom;
   publish_shared(odometry_pub_,
                  ros_bridge::odometry_to_ros(out_.pose, odometry_header, header.frame_id));
+}
+
+int run_feature_association(int argc, char** argv) {
+  return ros_bridge::run_node<FeatureAssociationNode>(argc, argv, "feature_association");
 }
 
 }  // namespace adaptive_lego_loam::nodes

@@ -1,4 +1,5 @@
 #include "image_projection.h"
+#include "node_entry_points.h"
 
 #include <adaptive_lego_loam/DegenerationState.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -119,6 +120,10 @@ void ImageProjectionNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
   status.add("beta0 (deg)", filtered_.beta0_deg);
   status.add("skeleton points", std::to_string(filtered_.skeleton_points));
   status.add("beta0 mode", to_string(config_.ambient.mode));
+}
+
+int run_image_projection(int argc, char** argv) {
+  return ros_bridge::run_node<ImageProjectionNode>(argc, argv, "image_projection");
 }
 
 }  // namespace adaptive_lego_loam::nodes

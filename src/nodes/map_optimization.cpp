@@ -1,4 +1,5 @@
 #include "map_optimization.h"
+#include "node_entry_points.h"
 
 #include <nav_msgs/Path.h>
 
@@ -311,6 +312,10 @@ void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
   status.add("loops beyond the drift bound", std::to_string(loops.beyond_drift));
   status.add("loops unconfirmed", std::to_string(loops.unconfirmed));
   status.add("loops removed", std::to_string(loops.removed));
+}
+
+int run_map_optimization(int argc, char** argv) {
+  return ros_bridge::run_node<MapOptimizationNode>(argc, argv, "map_optimization");
 }
 
 }  // namespace adaptive_lego_loam::nodes

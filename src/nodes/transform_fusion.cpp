@@ -1,4 +1,5 @@
 #include "transform_fusion.h"
+#include "node_entry_points.h"
 
 #include <tf2_eigen/tf2_eigen.h>
 
@@ -88,6 +89,10 @@ std::optional<Eigen::Isometry3d> TransformFusionNode::mounting(const std::string
     warn_("no " + frames_.base + " -> " + sensor + " transform yet: " + e.what());
   }
   return sensor_in_base_;
+}
+
+int run_transform_fusion(int argc, char** argv) {
+  return ros_bridge::run_node<TransformFusionNode>(argc, argv, "transform_fusion");
 }
 
 }  // namespace adaptive_lego_loam::nodes

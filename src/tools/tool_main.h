@@ -17,28 +17,11 @@ constexpr int kExitUsage = 2;    // the command line itself is wrong
 
 // Parses the command line. Returns the status to exit with when the tool must not go on:
 // 0 after --help, 2 after a usage error (one line on stderr naming the tool).
-inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv,
-                                             const std::string& tool) {
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    app.exit(e);
-    return kExitOk;
-  } catch (const CLI::CallForAllHelp& e) {
-    app.exit(e);
-    return kExitOk;
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "%s: %s (see %s --help)\n", tool.c_str(), e.what(), tool.c_str());
-    return kExitUsage;
-  }
-  return std::nullopt;
-}
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv,
+                                      const std::string& tool);
 
 // A usage error found after parsing (options that do not go together).
-inline int usage_error(const std::string& tool, const std::string& what) {
-  std::fprintf(stderr, "%s: %s (see %s --help)\n", tool.c_str(), what.c_str(), tool.c_str());
-  return kExitUsage;
-}
+int usage_error(const std::string& tool, const std::string& what);
 
 // Runs the tool's job: an exception becomes one line "tool: what" on stderr and status 1.
 template <class Job>

@@ -1,5 +1,4 @@
 #include <gtest/gtest.h>
-#include <pcl/registration/icp.h>
 
 #include <cmath>
 #include <cstdio>
