@@ -39,7 +39,7 @@ double heap_in_use_mb() {
 }
 
 void return_large_blocks_to_system() {
-  constexpr int kLarge = 1 << 20;
+  constexpr int kLarge = 256 << 10;
   mallopt(M_MMAP_THRESHOLD, kLarge);
   mallopt(M_TRIM_THRESHOLD, kLarge);
 }

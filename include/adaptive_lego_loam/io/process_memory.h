@@ -10,11 +10,12 @@ double peak_resident_memory_mb();
 // Bytes the program holds on the heap (MB), from the allocator (glibc's mallinfo2).
 double heap_in_use_mb();
 
-// Large blocks (1 MiB and up: voxel tables, KD-trees, a candidate's map) are mapped on their own
-// and go back to the system when freed, and free memory at the heap's top is trimmed past 1 MiB.
-// glibc otherwise raises its mapping threshold after the first large free and keeps such blocks
-// in the heap for good: a run's resident set would grow with its largest transient buffers, not
-// with what it keeps. Call once at start (a process-wide setting).
+// Large blocks (256 KiB and up: scan clouds, voxel tables, KD-trees, a candidate's map) are
+// mapped on their own and go back to the system when freed, and free memory at the heap's top is
+// trimmed past 256 KiB. glibc otherwise raises its mapping threshold after the first large free
+// and keeps such blocks in the heap for good, where the short-lived ones of loop closure leave
+// holes: a run's resident set would grow with its largest transient buffers, not with what it
+// keeps. Call once at start (a process-wide setting).
 void return_large_blocks_to_system();
 
 }  // namespace adaptive_lego_loam

@@ -8,17 +8,16 @@ LocalMap::Placement::Placement(const MappingParams& params)
     : corners(params.corner_voxel, kSearchRadius), surfaces(params.surface_voxel, kSearchRadius) {}
 
 void LocalMap::Placement::put_in(const Keyframe& keyframe) {
-  CloudPtr placed_corners = keyframe.corners->unpack(keyframe.pose);
-  CloudPtr placed_surfaces = keyframe.surfaces->unpack(keyframe.pose);
-  corners.add(*placed_corners);
-  surfaces.add(*placed_surfaces);
-  placed[keyframe.index] = {std::move(placed_corners), std::move(placed_surfaces)};
+  corners.add(*keyframe.corners->unpack(keyframe.pose));
+  surfaces.add(*keyframe.surfaces->unpack(keyframe.pose));
+  placed[keyframe.index] = {keyframe.corners, keyframe.surfaces, keyframe.pose};
 }
 
 void LocalMap::Placement::take_out(int keyframe) {
   const auto found = placed.find(keyframe);
-  corners.remove(*found->second.first);
-  surfaces.remove(*found->second.second);
+  const Placed& features = found->second;
+  corners.remove(*features.corners->unpack(features.pose));
+  surfaces.remove(*features.surfaces->unpack(features.pose));
   placed.erase(found);
 }
 

@@ -17,8 +17,7 @@ int64_t floor_divide(int64_t value, int64_t divisor) {
 }  // namespace
 
 VoxelMap::VoxelMap(double leaf, double max_radius)
-    : leaf_(leaf),
-      inverse_leaf_(1.0 / leaf),
+    : inverse_leaf_(1.0 / leaf),
       voxels_per_cell_(std::max<int64_t>(1, static_cast<int64_t>(std::ceil(max_radius / leaf)))),
       cell_size_(voxels_per_cell_ * leaf),
       cell_size_f_(static_cast<float>(cell_size_)),

@@ -35,15 +35,17 @@ Cloud wall_seen_from(double x) {
   return cloud;
 }
 
-// Keyframes 1 m apart along x (x = 0, 1, ...), each seeing the wall; then `back` more driving the
-// same road again from x = 0.
-std::vector<Keyframe> drive(int count, int back = 0) {
+// Keyframes `spacing` m apart along x (x = 0, 1, ...), each seeing the wall; then `back` more
+// driving the same road again from x = `shift`, `across` m to its side.
+std::vector<Keyframe> drive(int count, int back = 0, double shift = 0.0, double across = 0.0,
+                            double spacing = 1.0) {
   std::vector<Keyframe> keyframes;
   for (int i = 0; i < count + back; ++i) {
     Keyframe keyframe;
     keyframe.index = i;
-    const double x = i < count ? i : i - count;
-    keyframe.pose.translation() = Eigen::Vector3d(x, 0.0, 0.0);
+    const bool again = i >= count;
+    const double x = spacing * (again ? i - count : i) + (again ? shift : 0.0);
+    keyframe.pose.translation() = Eigen::Vector3d(x, again ? across : 0.0, 0.0);
     keyframe.corners = pack(Cloud());
     keyframe.surfaces = pack(wall_seen_from(x));
     keyframes.push_back(keyframe);
@@ -103,6 +105,38 @@ TEST(KeyframeMerging, APlaceDrivenAgainIsNotStoredTwice) {
   EXPECT_EQ(stored_again, 0);
   EXPECT_EQ(keyframes_with_clouds(twice), 30 / 5 + 5)
       << "the first pass's six groups, and the newest five, still unmerged";
+}
+
+TEST(KeyframeMerging, ASecondPassOffsetAlongAndAcrossTheRoadIsNotStoredTwice) {
+  // Its groups' middles fall halfway between the first pass's, 2 m to the side.
+  std::vector<Keyframe> twice = drive(30, 30, 2.5, 2.0);
+  KeyframeMerger merger(merging(5, 5));
+  merger.merge_old(twice);
+  int stored_again = 0;
+  for (int i = 30; i < merger.merged_until(); ++i)
+    stored_again += twice[i].has_clouds();
+  EXPECT_EQ(stored_again, 0);
+}
+
+TEST(KeyframeMerging, APassAlongAParallelRoadIsStored) {
+  // 12 m to the side: beyond half the merge radius (20 m) of the first pass's merged keyframes.
+  std::vector<Keyframe> twice = drive(30, 30, 0.0, 12.0);
+  KeyframeMerger merger(merging(5, 5));
+  merger.merge_old(twice);
+  int stored_again = 0;
+  for (int i = 30; i < merger.merged_until(); ++i)
+    stored_again += twice[i].has_clouds();
+  EXPECT_EQ(merger.merged_until(), 55);
+  EXPECT_EQ(stored_again, 5) << "each of the second pass's five merged groups kept its cloud";
+}
+
+TEST(KeyframeMerging, KeyframesCloseTogetherOnNewGroundAreAllStored) {
+  // Keyframes 0.2 m apart (a slow tight turn makes them by angle): each group's middle lies 1 m
+  // from the previous group's, on ground no earlier pass covered.
+  std::vector<Keyframe> keyframes = drive(40, 0, 0.0, 0.0, 0.2);
+  KeyframeMerger merger(merging(5, 5));
+  EXPECT_EQ(merger.merge_old(keyframes), 7);
+  EXPECT_EQ(keyframes_with_clouds(keyframes), 7 + 5) << "every merged group kept its cloud";
 }
 
 TEST(KeyframeMerging, AGroupOfOneIsOff) {

@@ -41,7 +41,13 @@ class LocalMap {
   bool empty() const { return active_.corners.empty() && active_.surfaces.empty(); }
 
  private:
-  // Keyframes placed in voxel maps, each with its features as placed (to take them out again).
+  // A keyframe's packed features and the pose they were placed by: unpacked again, they give the
+  // points put in exactly, to take them out (its keyframe may have moved or merged since).
+  struct Placed {
+    PackedCloudPtr corners, surfaces;
+    Eigen::Isometry3d pose;
+  };
+  // Keyframes placed in voxel maps.
   struct Placement {
     Placement(const MappingParams& params);
     void put_in(const Keyframe& keyframe);
@@ -50,7 +56,7 @@ class LocalMap {
     void clear();
 
     VoxelMap corners, surfaces;
-    std::map<int, std::pair<CloudPtr, CloudPtr>> placed;  // corners, surfaces in the map frame
+    std::map<int, Placed> placed;
   };
   std::vector<int> select(const std::vector<Keyframe>& keyframes,
                           const Eigen::Vector3d& position) const;

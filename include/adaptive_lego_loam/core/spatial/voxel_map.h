@@ -68,7 +68,7 @@ class VoxelMap {
   void detach(const Voxel& voxel);
   int64_t cell_of(int64_t voxel_index) const;
 
-  double leaf_, inverse_leaf_;
+  double inverse_leaf_;
   int64_t voxels_per_cell_;  // along each axis
   double cell_size_;
   float cell_size_f_;
