@@ -431,9 +431,9 @@ command (`--data DIR` or `ALEGO_DATA`: the folder with `kitti_odometry/` and
 
 Methods: LeGO-LOAM's depth-clustering threshold beta0 fixed at 10, 30 and 60 deg (`run_sequence
 --beta0`), the adaptive beta0 of the paper (`--adaptive`, Euclidean criterion and window of the
-config: the paper's distance test, w 3), the same with the authors' range-difference criterion and
-w 5 (`adaptive rd5`, `ambient_filter.euclidean_criterion: range_difference`,
-`euclidean_window: 5`), and no segmentation at all (`--no-segmentation`, every non-ground point
+config: the authors' range-difference test, w 5), the same with the distance test of the paper's
+text and w 3 (`adaptive d3`, `ambient_filter.euclidean_criterion: distance`,
+`euclidean_window: 3`), and no segmentation at all (`--no-segmentation`, every non-ground point
 kept, LOAM-like). Scenarios are simulated
 (`lidar_sim`, [simulator.md](simulator.md)) with exact ground truth, along the real KITTI
 trajectory named where there is one; each is driven with {len(set(r['seed'] for r in self.results['simulated']))}

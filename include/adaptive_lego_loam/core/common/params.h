@@ -74,10 +74,10 @@ struct AmbientFilterParams {
   double beta0_max_deg = 60.0;    // strict end: used when mu = 0, and for the skeleton
   double fixed_beta0_deg = 60.0;  // used when mode is kFixed
   // Step 4: adaptive Euclidean clustering on the range image.
-  int euclidean_window = 3;  // w: the window is (2w+1) x (2w+1)
+  int euclidean_window = 5;  // w: the window is (2w+1) x (2w+1)
   double euclidean_gamma = 1.2;
   double euclidean_fixed_threshold = 0.0;  // m; > 0 turns the adaptive threshold off (baseline)
-  EuclideanCriterion euclidean_criterion = EuclideanCriterion::kDistance;
+  EuclideanCriterion euclidean_criterion = EuclideanCriterion::kRangeDifference;
   // Step 5: skeleton.
   int skeleton_euclidean_min_points = 100;  // n_e
   int skeleton_depth_min_points = 30;       // n_d
