@@ -60,6 +60,21 @@ int keyframes_with_clouds(const std::vector<Keyframe>& keyframes) {
   return count;
 }
 
+// Drives 30 keyframes, then the same road again from `shift` along and `across` it; merges
+// groups of 5 older than the newest 5. Returns how many merged keyframes of the second pass kept
+// a cloud (five groups of it are merged).
+int stored_on_second_pass(double shift, double across, std::vector<Keyframe>* keyframes = nullptr) {
+  std::vector<Keyframe> twice = drive(30, 30, shift, across);
+  KeyframeMerger merger(merging(5, 5));
+  merger.merge_old(twice);
+  EXPECT_EQ(merger.merged_until(), 55);
+  int stored_again = 0;
+  for (int i = 30; i < merger.merged_until(); ++i)
+    stored_again += twice[i].has_clouds();
+  if (keyframes) *keyframes = std::move(twice);
+  return stored_again;
+}
+
 }  // namespace
 
 TEST(KeyframeMerging, OnlyGroupsOlderThanTheRecentWindowAreMerged) {
@@ -94,40 +109,22 @@ TEST(KeyframeMerging, TheMergedCloudIsTheGroupsCloudsInTheAnchorsFrameVoxelFilte
 }
 
 TEST(KeyframeMerging, APlaceDrivenAgainIsNotStoredTwice) {
-  std::vector<Keyframe> twice = drive(30, 30);
-  KeyframeMerger merger(merging(5, 5));
-  merger.merge_old(twice);
   // The second pass over x = 0 ... 29 finds every place stored: its merged groups keep nothing.
-  int stored_again = 0;
-  for (int i = 30; i < merger.merged_until(); ++i)
-    stored_again += twice[i].has_clouds();
-  EXPECT_EQ(merger.merged_until(), 55);
-  EXPECT_EQ(stored_again, 0);
+  std::vector<Keyframe> twice;
+  EXPECT_EQ(stored_on_second_pass(0.0, 0.0, &twice), 0);
   EXPECT_EQ(keyframes_with_clouds(twice), 30 / 5 + 5)
       << "the first pass's six groups, and the newest five, still unmerged";
 }
 
 TEST(KeyframeMerging, ASecondPassOffsetAlongAndAcrossTheRoadIsNotStoredTwice) {
   // Its groups' middles fall halfway between the first pass's, 2 m to the side.
-  std::vector<Keyframe> twice = drive(30, 30, 2.5, 2.0);
-  KeyframeMerger merger(merging(5, 5));
-  merger.merge_old(twice);
-  int stored_again = 0;
-  for (int i = 30; i < merger.merged_until(); ++i)
-    stored_again += twice[i].has_clouds();
-  EXPECT_EQ(stored_again, 0);
+  EXPECT_EQ(stored_on_second_pass(2.5, 2.0), 0);
 }
 
 TEST(KeyframeMerging, APassAlongAParallelRoadIsStored) {
   // 12 m to the side: beyond half the merge radius (20 m) of the first pass's merged keyframes.
-  std::vector<Keyframe> twice = drive(30, 30, 0.0, 12.0);
-  KeyframeMerger merger(merging(5, 5));
-  merger.merge_old(twice);
-  int stored_again = 0;
-  for (int i = 30; i < merger.merged_until(); ++i)
-    stored_again += twice[i].has_clouds();
-  EXPECT_EQ(merger.merged_until(), 55);
-  EXPECT_EQ(stored_again, 5) << "each of the second pass's five merged groups kept its cloud";
+  EXPECT_EQ(stored_on_second_pass(0.0, 12.0), 5)
+      << "each of the second pass's five merged groups kept its cloud";
 }
 
 TEST(KeyframeMerging, KeyframesCloseTogetherOnNewGroundAreAllStored) {
