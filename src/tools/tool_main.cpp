@@ -15,8 +15,7 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv,
     app.exit(e);
     return kExitOk;
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "%s: %s (see %s --help)\n", tool.c_str(), e.what(), tool.c_str());
-    return kExitUsage;
+    return usage_error(tool, e.what());
   }
   return std::nullopt;
 }

@@ -35,7 +35,7 @@ Cloud wall_seen_from(double x) {
   return cloud;
 }
 
-// Keyframes `spacing` m apart along x (x = 0, 1, ...), each seeing the wall; then `back` more
+// Keyframes `spacing` m apart along x from x = 0, each seeing the wall; then `back` more
 // driving the same road again from x = `shift`, `across` m to its side.
 std::vector<Keyframe> drive(int count, int back = 0, double shift = 0.0, double across = 0.0,
                             double spacing = 1.0) {

@@ -3,8 +3,8 @@
 // a time. The group's clouds join its middle keyframe's (in that keyframe's frame, voxel-filtered:
 // consecutive keyframes see mostly the same points), and the others keep their pose only. A group
 // whose keyframes all lie near merged keyframes of an earlier pass (a place driven again) keeps no
-// cloud at all. Local map, loop closure and saved maps use the keyframes that hold
-// clouds; every keyframe stays a node of the pose graph.
+// cloud at all. Local map, loop closure and saved maps use the keyframes that hold clouds; every
+// keyframe stays a node of the pose graph.
 
 #include <utility>
 #include <vector>
