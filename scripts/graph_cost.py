@@ -6,11 +6,14 @@ plays and the scans that were not mapped.
 
   source .ws/devel/setup.bash
   /usr/bin/python3 scripts/graph_cost.py --bag results/sim.bag --sensor kitti [--nodelets]
-      [--rate 0.25] [--memory-every 500]
+      [--rate 0.25] [--memory-every 500] [--skip 2]
 
 Prints one line per process (CPU ms per scan) and the total, the scans mapped, the latency's median
 and 95th percentile (ms) over the first and the last 500 scans, and with --memory-every N the
-resident memory (MB) of each process every N scans. Starts its own roscore, the graph (use_sim_time
+resident memory (MB) of each process every N scans. With --skip N the CPU is counted from the
+moment the Nth scan is mapped (a short bag's first pair, registered from several start guesses,
+and start-up work would weigh on every scan; play it slowly, e.g. --rate 0.5, so that the moment
+falls between two scans). Starts its own roscore, the graph (use_sim_time
 off: the scans' stamps are the bag's) and rosbag play; at --rate 0.25 nothing is dropped.
 """
 
@@ -111,6 +114,8 @@ def main():
     parser.add_argument("--rate", type=float, default=0.25)
     parser.add_argument("--memory-every", type=int, default=0,
                         help="print each process's resident memory every this many scans")
+    parser.add_argument("--skip", type=int, default=0,
+                        help="count the CPU from the moment this many scans are mapped")
     args = parser.parse_args()
     scans = rosbag.Bag(args.bag).get_message_count("/velodyne_points")
     env = dict(os.environ)
@@ -127,27 +132,32 @@ def main():
         time.sleep(6)
         processes = graph_processes()
         before = {pid: cpu_seconds(pid) for pid in processes}
+        counted_scans = scans
         player = subprocess.Popen(["rosbag", "play", "-q", "-d", "2", "-r", str(args.rate),
                                    args.bag])
         memory = []  # (scans played, {name: MB})
         next_sample = 0
         while player.poll() is None:
+            if args.skip and counted_scans == scans and len(latency.latencies) >= args.skip:
+                before = {pid: cpu_seconds(pid) for pid in processes}
+                counted_scans = scans - len(latency.latencies)
             if args.memory_every and latency.scans >= next_sample:
                 memory.append((latency.scans, {name: resident_mb(pid)
                                                for pid, name in processes.items()}))
                 next_sample += args.memory_every
-            time.sleep(0.2)
+            time.sleep(0.2 if counted_scans < scans or not args.skip else 0.005)
         time.sleep(3)
         if args.memory_every:
             memory.append((latency.scans, {name: resident_mb(pid)
                                            for pid, name in processes.items()}))
         after = {pid: cpu_seconds(pid) for pid in processes}
         total = 0.0
-        print(f"{'nodelets' if args.nodelets else 'nodes'}: {scans} scans, CPU ms per scan:")
+        print(f"{'nodelets' if args.nodelets else 'nodes'}: {scans} scans, CPU ms per scan"
+              f"{f' over the last {counted_scans}' if counted_scans < scans else ''}:")
         for pid, name in sorted(processes.items(), key=lambda item: item[1]):
             if before[pid] is None or after[pid] is None:
                 continue
-            ms = 1000.0 * (after[pid] - before[pid]) / scans
+            ms = 1000.0 * (after[pid] - before[pid]) / counted_scans
             total += ms
             print(f"  {name:24s} {ms:7.1f}")
         print(f"  {'total':24s} {total:7.1f}")

@@ -42,7 +42,7 @@ T load(const uint8_t* at, bool swap) {
   return value;
 }
 
-double read_value(const uint8_t* at, uint8_t datatype, bool swap) {
+inline double read_value(const uint8_t* at, uint8_t datatype, bool swap) {
   switch (static_cast<FieldType>(datatype)) {
     case FieldType::kInt8:
       return load<int8_t>(at, false);
@@ -135,7 +135,7 @@ std::size_t checked_row_step(const PackedPoints& packed, const std::string& sour
 
 }  // namespace
 
-Scan decode_points(const PackedPoints& packed, const std::string& source) {
+void decode_points(const PackedPoints& packed, const std::string& source, Scan& scan) {
   const FieldDescription* x = find_field(packed, {"x"}, source, true);
   const FieldDescription* y = find_field(packed, {"y"}, source, true);
   const FieldDescription* z = find_field(packed, {"z"}, source, true);
@@ -154,29 +154,33 @@ Scan decode_points(const PackedPoints& packed, const std::string& source) {
   // Integer time fields are nanoseconds (Ouster's t, nebula's time_stamp), float ones seconds.
   const double time_scale = time && is_integer(time->datatype) ? 1e-9 : 1.0;
 
-  Scan scan;
   scan.has_ring = ring != nullptr;
   scan.has_time = time != nullptr;
-  if (empty) return scan;
-  scan.points.resize(std::size_t{packed.width} * packed.height);
+  // Every field of every point is written below: the buffer of a scan before leaves nothing.
+  scan.points.resize(empty ? 0 : std::size_t{packed.width} * packed.height);
+  if (empty) return;
   const bool swap = packed.big_endian;
-  for (std::size_t i = 0; i < scan.points.size(); ++i) {
-    const uint8_t* record =
-        packed.data + (i / packed.width) * row_step + (i % packed.width) * packed.point_step;
-    ScanPoint& p = scan.points[i];
-    p.x = static_cast<float>(read_value(record + x->offset, x->datatype, swap));
-    p.y = static_cast<float>(read_value(record + y->offset, y->datatype, swap));
-    p.z = static_cast<float>(read_value(record + z->offset, z->datatype, swap));
-    if (intensity) {
-      p.intensity =
-          static_cast<float>(read_value(record + intensity->offset, intensity->datatype, swap));
-    }
-    if (ring) p.ring = ring_value(read_value(record + ring->offset, ring->datatype, swap));
-    if (time) {
-      p.time =
-          static_cast<float>(read_value(record + time->offset, time->datatype, swap) * time_scale);
+  ScanPoint* p = scan.points.data();
+  for (uint32_t row = 0; row < packed.height; ++row) {
+    const uint8_t* record = packed.data + row * row_step;
+    for (uint32_t column = 0; column < packed.width; ++column, ++p, record += packed.point_step) {
+      p->x = static_cast<float>(read_value(record + x->offset, x->datatype, swap));
+      p->y = static_cast<float>(read_value(record + y->offset, y->datatype, swap));
+      p->z = static_cast<float>(read_value(record + z->offset, z->datatype, swap));
+      p->intensity = intensity ? static_cast<float>(read_value(record + intensity->offset,
+                                                               intensity->datatype, swap))
+                               : 0.f;
+      p->ring = ring ? ring_value(read_value(record + ring->offset, ring->datatype, swap)) : -1;
+      p->time = time ? static_cast<float>(read_value(record + time->offset, time->datatype, swap) *
+                                          time_scale)
+                     : 0.f;
     }
   }
+}
+
+Scan decode_points(const PackedPoints& packed, const std::string& source) {
+  Scan scan;
+  decode_points(packed, source, scan);
   return scan;
 }
 

@@ -84,10 +84,10 @@ void FeatureAssociationNode::process(const ros_bridge::StampMatcher::Group& grou
   }
   const auto cloud = group.get<sensor_msgs::PointCloud2>(kCloud);
   try {
-    const ros_bridge::ReceivedSegmentedCloud received = ros_bridge::segmented_cloud_from_ros(
-        *cloud, *group.get<CloudInfoMsg>(kInfo), *group.get<sensor_msgs::PointCloud2>(kOutliers),
-        topics());
-    odometry_.process(received.cloud, received.has_time, out_);
+    ros_bridge::segmented_cloud_from_ros(*cloud, *group.get<CloudInfoMsg>(kInfo),
+                                         *group.get<sensor_msgs::PointCloud2>(kOutliers), topics(),
+                                         received_);
+    odometry_.process(received_.cloud, received_.has_time, out_);
   } catch (const std::exception& e) {
     drop("bad cloud", e.what());
     return;

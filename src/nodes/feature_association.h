@@ -20,6 +20,7 @@ namespace adaptive_lego_loam::nodes {
 
 class FeatureAssociationNode {
  public:
+  static constexpr bool kHoldsTheMap = false;
   FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config);
 
  private:
@@ -40,6 +41,7 @@ class FeatureAssociationNode {
 
   Config config_;
   LidarOdometry odometry_;
+  ros_bridge::ReceivedSegmentedCloud received_;  // the latest scan; its buffers are reused
   OdometryOutput out_;
   ros_bridge::FrameNames frames_;
   ros_bridge::ScanPairing pairing_;

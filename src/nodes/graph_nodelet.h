@@ -17,7 +17,8 @@ class GraphNodelet : public nodelet::Nodelet {
  private:
   // A bad config fails the load (nodelet load then exits non-zero, as the node would).
   void onInit() override {
-    return_large_blocks_to_system();  // the manager's process runs for hours too
+    // A process-wide setting: the whole manager gets it when it holds the map.
+    if constexpr (Node::kHoldsTheMap) return_large_blocks_to_system();
     ros::NodeHandle& nh = getNodeHandle();
     ros::NodeHandle& private_nh = getPrivateNodeHandle();
     try {

@@ -69,9 +69,9 @@ void ImageProjectionNode::on_scan(const sensor_msgs::PointCloud2ConstPtr& msg) {
 
 bool ImageProjectionNode::filter(const sensor_msgs::PointCloud2& msg) {
   const std::string& topic = scan_sub_.getTopic();
-  const Scan scan = ros_bridge::from_ros(msg, topic);
+  ros_bridge::from_ros(msg, topic, scan_);
   try {
-    filter_.process(scan, filtered_);
+    filter_.process(scan_, filtered_);
   } catch (const std::invalid_argument& e) {  // e.g. the config wants rings the cloud lacks
     drop("bad cloud", topic + ": " + e.what());
     return false;

@@ -14,6 +14,7 @@ namespace adaptive_lego_loam::nodes {
 
 class ImageProjectionNode {
  public:
+  static constexpr bool kHoldsTheMap = false;
   ImageProjectionNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config);
 
  private:
@@ -26,6 +27,7 @@ class ImageProjectionNode {
 
   Config config_;
   AmbientFilter filter_;
+  Scan scan_;  // the latest message's points; its buffer is reused
   AmbientFilterResult filtered_;
   bool filtered_once_ = false;
   ros_bridge::FrameNames frames_;

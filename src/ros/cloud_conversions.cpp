@@ -7,9 +7,14 @@
 namespace adaptive_lego_loam::ros_bridge {
 
 Scan from_ros(const sensor_msgs::PointCloud2& msg, const std::string& source) {
-  Scan scan = decode_points(packed_points(msg), source);
-  scan.stamp = msg.header.stamp.toSec();
+  Scan scan;
+  from_ros(msg, source, scan);
   return scan;
+}
+
+void from_ros(const sensor_msgs::PointCloud2& msg, const std::string& source, Scan& scan) {
+  decode_points(packed_points(msg), source, scan);
+  scan.stamp = msg.header.stamp.toSec();
 }
 
 namespace {
@@ -23,12 +28,12 @@ sensor_msgs::PointField field(const std::string& name, uint32_t offset, uint8_t 
   return f;
 }
 
-}  // namespace
-
 // x y z intensity [time ring], every field at an offset that is a multiple of its size and the
-// point step a multiple of 4, so that readers may take the fields in place.
-sensor_msgs::PointCloud2 to_ros(const std::vector<ScanPoint>& points,
-                                const std_msgs::Header& header, bool with_ring_and_time) {
+// point step a multiple of 4, so that readers may take the fields in place. `rings`, when given,
+// replaces each point's ring.
+sensor_msgs::PointCloud2 encode(const std::vector<ScanPoint>& points,
+                                const std::vector<uint16_t>* rings, const std_msgs::Header& header,
+                                bool with_ring_and_time) {
   using sensor_msgs::PointField;
   sensor_msgs::PointCloud2 msg;
   msg.header = header;
@@ -47,17 +52,30 @@ sensor_msgs::PointCloud2 to_ros(const std::vector<ScanPoint>& points,
   msg.is_dense = false;
   msg.data.assign(std::size_t{msg.row_step}, 0);
   uint8_t* out = msg.data.data();
-  for (const ScanPoint& p : points) {
+  for (std::size_t i = 0; i < points.size(); ++i, out += msg.point_step) {
+    const ScanPoint& p = points[i];
     const float xyzi[4] = {p.x, p.y, p.z, p.intensity};
     std::memcpy(out, xyzi, sizeof(xyzi));
     if (with_ring_and_time) {
-      const uint16_t ring = static_cast<uint16_t>(p.ring < 0 ? 0 : p.ring);
+      const uint16_t ring = rings ? (*rings)[i] : static_cast<uint16_t>(p.ring < 0 ? 0 : p.ring);
       std::memcpy(out + 16, &p.time, sizeof(float));
       std::memcpy(out + 20, &ring, sizeof(ring));
     }
-    out += msg.point_step;
   }
   return msg;
+}
+
+}  // namespace
+
+sensor_msgs::PointCloud2 to_ros(const std::vector<ScanPoint>& points,
+                                const std_msgs::Header& header, bool with_ring_and_time) {
+  return encode(points, nullptr, header, with_ring_and_time);
+}
+
+sensor_msgs::PointCloud2 to_ros(const std::vector<ScanPoint>& points,
+                                const std::vector<uint16_t>& rings,
+                                const std_msgs::Header& header) {
+  return encode(points, &rings, header, true);
 }
 
 }  // namespace adaptive_lego_loam::ros_bridge

@@ -14,6 +14,18 @@ void check_length(std::size_t entries, std::size_t points, const std::string& so
                 std::to_string(points) + ")");
 }
 
+// Copies into `info`'s existing buffers.
+void assign_cloud_info(const CloudInfoMsg& msg, CloudInfo& info) {
+  info.start_ring_index = msg.startRingIndex;
+  info.end_ring_index = msg.endRingIndex;
+  info.start_orientation = msg.startOrientation;
+  info.end_orientation = msg.endOrientation;
+  info.orientation_diff = msg.orientationDiff;
+  info.ground_flag.assign(msg.segmentedCloudGroundFlag.begin(), msg.segmentedCloudGroundFlag.end());
+  info.column = msg.segmentedCloudColInd;
+  info.range = msg.segmentedCloudRange;
+}
+
 }  // namespace
 
 CloudInfoMsg cloud_info_to_ros(const CloudInfo& info, const std_msgs::Header& header) {
@@ -32,14 +44,7 @@ CloudInfoMsg cloud_info_to_ros(const CloudInfo& info, const std_msgs::Header& he
 
 CloudInfo cloud_info_from_ros(const CloudInfoMsg& msg) {
   CloudInfo info;
-  info.start_ring_index = msg.startRingIndex;
-  info.end_ring_index = msg.endRingIndex;
-  info.start_orientation = msg.startOrientation;
-  info.end_orientation = msg.endOrientation;
-  info.orientation_diff = msg.orientationDiff;
-  info.ground_flag.assign(msg.segmentedCloudGroundFlag.begin(), msg.segmentedCloudGroundFlag.end());
-  info.column = msg.segmentedCloudColInd;
-  info.range = msg.segmentedCloudRange;
+  assign_cloud_info(msg, info);
   return info;
 }
 
@@ -65,11 +70,8 @@ void check_cloud_info(const CloudInfo& info, std::size_t points, const std::stri
 
 SegmentedCloudMessages segmented_cloud_to_ros(const SegmentedCloud& cloud,
                                               const std_msgs::Header& header) {
-  std::vector<ScanPoint> points = cloud.points;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    points[i].ring = cloud.row[i];
   SegmentedCloudMessages messages;
-  messages.cloud = to_ros(points, header, true);
+  messages.cloud = to_ros(cloud.points, cloud.row, header);
   messages.info = cloud_info_to_ros(cloud.info, header);
   messages.outliers = to_ros(cloud.outliers, header, false);
   return messages;
@@ -79,22 +81,33 @@ ReceivedSegmentedCloud segmented_cloud_from_ros(const sensor_msgs::PointCloud2& 
                                                 const CloudInfoMsg& info,
                                                 const sensor_msgs::PointCloud2& outliers,
                                                 const SegmentedCloudTopics& topics) {
-  Scan scan = from_ros(cloud, topics.cloud);
+  ReceivedSegmentedCloud received;
+  segmented_cloud_from_ros(cloud, info, outliers, topics, received);
+  return received;
+}
+
+void segmented_cloud_from_ros(const sensor_msgs::PointCloud2& cloud, const CloudInfoMsg& info,
+                              const sensor_msgs::PointCloud2& outliers,
+                              const SegmentedCloudTopics& topics,
+                              ReceivedSegmentedCloud& received) {
+  SegmentedCloud& segmented = received.cloud;
+  Scan scan;
+  scan.points.swap(segmented.points);  // decoded into the previous message's buffer
+  from_ros(cloud, topics.cloud, scan);
   if (!scan.has_ring) {
     throw IoError(topics.cloud + ": missing field ring (the range-image row of each point)");
   }
-  ReceivedSegmentedCloud received;
   received.has_time = scan.has_time;
   received.stamp = scan.stamp;
-  SegmentedCloud& segmented = received.cloud;
-  segmented.row.reserve(scan.points.size());
-  for (const ScanPoint& p : scan.points)
-    segmented.row.push_back(static_cast<uint16_t>(p.ring));
-  segmented.points = std::move(scan.points);
-  segmented.info = cloud_info_from_ros(info);
+  segmented.row.resize(scan.points.size());
+  for (std::size_t i = 0; i < scan.points.size(); ++i)
+    segmented.row[i] = static_cast<uint16_t>(scan.points[i].ring);
+  segmented.points.swap(scan.points);
+  assign_cloud_info(info, segmented.info);
   check_cloud_info(segmented.info, segmented.points.size(), topics.info);
-  segmented.outliers = from_ros(outliers, topics.outliers).points;
-  return received;
+  scan.points.swap(segmented.outliers);
+  from_ros(outliers, topics.outliers, scan);
+  segmented.outliers.swap(scan.points);
 }
 
 std::vector<ScanPoint> projected_points(const RangeImage& image) {

@@ -63,6 +63,71 @@ TEST(PointFields, Int16CoordinatesAreReadAsNumbers) {
   EXPECT_FALSE(scan.has_ring || scan.has_time);
 }
 
+// A node decodes every message into the same Scan: nothing of a richer, longer scan before stays.
+TEST(PointFields, DecodingIntoAScanLeavesNothingOfTheScanBefore) {
+  struct Full {
+    float x, y, z, intensity;
+    uint16_t ring;
+  } __attribute__((packed));
+  const Full full[3] = {{1, 2, 3, 40, 5}, {4, 5, 6, 50, 6}, {7, 8, 9, 60, 7}};
+  struct Bare {
+    float x, y, z;
+  };
+  const Bare bare[2] = {{-1, -2, -3}, {-4, -5, -6}};
+  Scan scan = decode_points(packed_rows(full, {{"x", 0, 7, 1},
+                                               {"y", 4, 7, 1},
+                                               {"z", 8, 7, 1},
+                                               {"intensity", 12, 7, 1},
+                                               {"ring", 16, 4, 1}}),
+                            "first");
+  ASSERT_TRUE(scan.has_ring);
+  decode_points(packed_rows(bare, {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}}), "second",
+                scan);
+  ASSERT_EQ(scan.points.size(), 2u);
+  EXPECT_FALSE(scan.has_ring || scan.has_time);
+  for (const ScanPoint& p : scan.points) {
+    EXPECT_EQ(p.intensity, 0.f);
+    EXPECT_EQ(p.ring, -1);
+  }
+  EXPECT_EQ(scan.points[1].x, -4.f);
+  EXPECT_EQ(scan.points[1].z, -6.f);
+}
+
+// A big-endian cloud (is_bigendian): every multi-byte field is byte-swapped, single bytes not.
+TEST(PointFields, BigEndianRecordsAreSwapped) {
+  struct Record {
+    uint8_t x[4], y[4], z[4];
+    uint8_t ring[2];
+    uint8_t channel_byte;
+  } __attribute__((packed));
+  const auto big = [](float value, uint8_t(&out)[4]) {
+    uint8_t bytes[4];
+    std::memcpy(bytes, &value, 4);
+    for (int i = 0; i < 4; ++i)
+      out[i] = bytes[3 - i];
+  };
+  Record records[1] = {};
+  big(1.5f, records[0].x);
+  big(-2.f, records[0].y);
+  big(300.f, records[0].z);
+  records[0].ring[0] = 0x01;  // 0x0102 = 258
+  records[0].ring[1] = 0x02;
+  records[0].channel_byte = 9;
+  PackedPoints packed = packed_rows(records, {{"x", 0, 7, 1},
+                                              {"y", 4, 7, 1},
+                                              {"z", 8, 7, 1},
+                                              {"ring", 12, 4, 1},
+                                              {"intensity", 14, 2, 1}});
+  packed.big_endian = true;
+  const Scan scan = decode_points(packed, "test");
+  ASSERT_EQ(scan.points.size(), 1u);
+  EXPECT_EQ(scan.points[0].x, 1.5f);
+  EXPECT_EQ(scan.points[0].y, -2.f);
+  EXPECT_EQ(scan.points[0].z, 300.f);
+  EXPECT_EQ(scan.points[0].ring, 258);
+  EXPECT_EQ(scan.points[0].intensity, 9.f);
+}
+
 TEST(PointFields, ShortDataAndFieldPastStepAreErrors) {
   float values[3] = {1, 2, 3};
   PackedPoints packed;

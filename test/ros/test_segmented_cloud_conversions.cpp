@@ -51,6 +51,30 @@ TEST(SegmentedCloudConversions, RealScanSurvivesTheRoundTripExactly) {
   EXPECT_EQ(info.range, sent.info.range);
 }
 
+// feature_association receives every scan into the buffers of the one before.
+TEST(SegmentedCloudConversions, AScanReceivedIntoTheBuffersOfAnotherEqualsItReceivedAlone) {
+  AmbientFilter filter(kitti_config());
+  const SegmentedCloudMessages first =
+      segmented_cloud_to_ros(filter_frame(filter, 1).segmentation.cloud, header_at(1.0));
+  const SegmentedCloudMessages second =
+      segmented_cloud_to_ros(filter_frame(filter, 0).segmentation.cloud, header_at(2.0));
+  ASSERT_NE(first.cloud.width, second.cloud.width);
+
+  ReceivedSegmentedCloud reused;
+  segmented_cloud_from_ros(first.cloud, first.info, first.outliers, {}, reused);
+  segmented_cloud_from_ros(second.cloud, second.info, second.outliers, {}, reused);
+  const ReceivedSegmentedCloud alone =
+      segmented_cloud_from_ros(second.cloud, second.info, second.outliers);
+  EXPECT_DOUBLE_EQ(reused.stamp, 2.0);
+  expect_same_points(reused.cloud.points, alone.cloud.points);
+  expect_same_points(reused.cloud.outliers, alone.cloud.outliers);
+  EXPECT_EQ(reused.cloud.row, alone.cloud.row);
+  EXPECT_EQ(reused.cloud.info.start_ring_index, alone.cloud.info.start_ring_index);
+  EXPECT_EQ(reused.cloud.info.ground_flag, alone.cloud.info.ground_flag);
+  EXPECT_EQ(reused.cloud.info.column, alone.cloud.info.column);
+  EXPECT_EQ(reused.cloud.info.range, alone.cloud.info.range);
+}
+
 TEST(SegmentedCloudConversions, OdometryOnReceivedCloudsEqualsOdometryOnTheOriginals) {
   // feature_association must give what the offline Pipeline gives: two scans through
   // LidarOdometry directly and through the messages.

@@ -65,5 +65,7 @@ PackedPoints packed_points(const PointCloud2& cloud) {
 // missing, has a non-numeric type or lies outside the record, when a row is longer than the row
 // step, or when the data is short. A ring value beyond int32 reads as -1 (no laser).
 Scan decode_points(const PackedPoints& packed, const std::string& source);
+// The same into `scan`, whose point buffer is reused (its stamp is left as it was).
+void decode_points(const PackedPoints& packed, const std::string& source, Scan& scan);
 
 }  // namespace adaptive_lego_loam

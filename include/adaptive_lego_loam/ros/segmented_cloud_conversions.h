@@ -43,6 +43,10 @@ ReceivedSegmentedCloud segmented_cloud_from_ros(const sensor_msgs::PointCloud2& 
                                                 const CloudInfoMsg& info,
                                                 const sensor_msgs::PointCloud2& outliers,
                                                 const SegmentedCloudTopics& topics = {});
+// The same into `received`, whose buffers are reused from one scan to the next.
+void segmented_cloud_from_ros(const sensor_msgs::PointCloud2& cloud, const CloudInfoMsg& info,
+                              const sensor_msgs::PointCloud2& outliers,
+                              const SegmentedCloudTopics& topics, ReceivedSegmentedCloud& received);
 
 CloudInfoMsg cloud_info_to_ros(const CloudInfo& info, const std_msgs::Header& header);
 CloudInfo cloud_info_from_ros(const CloudInfoMsg& msg);

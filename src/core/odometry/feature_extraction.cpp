@@ -134,6 +134,9 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
 void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,
                                const std::vector<ScanPoint>& outliers, FeatureSet& out) {
   out.clear();
+  // Room for as many as the last scan had: the cloud grows row by row, and each reallocation
+  // of a large block costs fresh pages.
+  out.less_flat->reserve(less_flat_capacity_);
   compute_smoothness(cloud);
   mark_unreliable(cloud);
   label_.assign(cloud.info.range.size(), 0);
@@ -142,6 +145,7 @@ void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<Sc
     pick_row(cloud, points, row, out);
   for (const ScanPoint& p : outliers)
     out.outliers->push_back(to_cloud_point(p, -1));
+  less_flat_capacity_ = out.less_flat->size() + out.less_flat->size() / 8;
 }
 
 }  // namespace adaptive_lego_loam

@@ -32,7 +32,9 @@ struct PointKdTree::Index {
   std::vector<Entry> entries;
   std::vector<Node> nodes;
 
-  explicit Index(const Cloud& cloud) {
+  // Rebuilt in the buffers of the tree before: a tree rebuilt every scan allocates nothing.
+  void assign(const Cloud& cloud) {
+    nodes.clear();
     entries.resize(cloud.size());
     for (std::size_t i = 0; i < cloud.size(); ++i) {
       entries[i] = {{cloud[i].x, cloud[i].y, cloud[i].z}, static_cast<uint32_t>(i)};
@@ -118,8 +120,12 @@ PointKdTree& PointKdTree::operator=(PointKdTree&&) noexcept = default;
 
 void PointKdTree::build(CloudConstPtr cloud) {
   cloud_ = std::move(cloud);
-  index_.reset();
-  if (cloud_ && !cloud_->empty()) index_ = std::make_unique<Index>(*cloud_);
+  if (!cloud_ || cloud_->empty()) {
+    index_.reset();
+    return;
+  }
+  if (!index_) index_ = std::make_unique<Index>();
+  index_->assign(*cloud_);
 }
 
 int PointKdTree::nearest(const Eigen::Vector3f& query, int k, uint32_t* indices,

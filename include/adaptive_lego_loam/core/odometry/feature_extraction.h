@@ -49,6 +49,7 @@ class FeatureExtractor {
   std::vector<uint8_t> picked_;  // no longer available for selection
   std::vector<int8_t> label_;    // 2 sharp, 1 less sharp, -1 flat, 0 none
   Cloud row_less_flat_;
+  std::size_t less_flat_capacity_ = 0;  // reserved for the next scan
   VoxelFilter voxel_filter_;
 };
 
