@@ -38,10 +38,8 @@ double heap_in_use_mb() {
   return static_cast<double>(info.uordblks + info.hblkhd) / (1024.0 * 1024.0);
 }
 
-void return_large_blocks_to_system() {
-  constexpr int kLarge = 256 << 10;
-  mallopt(M_MMAP_THRESHOLD, kLarge);
-  mallopt(M_TRIM_THRESHOLD, kLarge);
+void return_free_memory_to_system() {
+  malloc_trim(0);
 }
 
 }  // namespace adaptive_lego_loam

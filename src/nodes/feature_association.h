@@ -20,7 +20,6 @@ namespace adaptive_lego_loam::nodes {
 
 class FeatureAssociationNode {
  public:
-  static constexpr bool kHoldsTheMap = false;
   FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config);
 
  private:

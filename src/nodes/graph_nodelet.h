@@ -7,7 +7,6 @@
 #include <exception>
 #include <memory>
 
-#include "adaptive_lego_loam/io/process_memory.h"
 #include "adaptive_lego_loam/ros/node_config.h"
 
 namespace adaptive_lego_loam::nodes {
@@ -17,8 +16,6 @@ class GraphNodelet : public nodelet::Nodelet {
  private:
   // A bad config fails the load (nodelet load then exits non-zero, as the node would).
   void onInit() override {
-    // A process-wide setting: the whole manager gets it when it holds the map.
-    if constexpr (Node::kHoldsTheMap) return_large_blocks_to_system();
     ros::NodeHandle& nh = getNodeHandle();
     ros::NodeHandle& private_nh = getPrivateNodeHandle();
     try {

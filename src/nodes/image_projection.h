@@ -14,7 +14,6 @@ namespace adaptive_lego_loam::nodes {
 
 class ImageProjectionNode {
  public:
-  static constexpr bool kHoldsTheMap = false;
   ImageProjectionNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config);
 
  private:

@@ -8,6 +8,7 @@
 
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/map_files.h"
+#include "adaptive_lego_loam/io/process_memory.h"
 #include "adaptive_lego_loam/ros/degeneration_conversions.h"
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
@@ -232,6 +233,7 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
     publish(group.stamp);
   }
   last_stamp_ = group.stamp;
+  return_free_memory_to_system();  // in a nodelet manager, for every stage in it
 }
 
 // An attempt is reported on the scan it finished, some scans after its keyframe.

@@ -29,9 +29,6 @@ namespace adaptive_lego_loam::nodes {
 
 class MapOptimizationNode {
  public:
-  // Keyframes, the pose graph and loop closure's short-lived buffers: see
-  // return_large_blocks_to_system().
-  static constexpr bool kHoldsTheMap = true;
   MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config);
   // Saves the map to ~save_map_on_exit, when set.
   ~MapOptimizationNode();

@@ -24,7 +24,6 @@ namespace adaptive_lego_loam::nodes {
 
 class TransformFusionNode {
  public:
-  static constexpr bool kHoldsTheMap = false;
   TransformFusionNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const Config& config);
 
  private:

@@ -303,6 +303,7 @@ int run(const Options& options) {
       stamps.add(scan->stamp);
       last_stamp = scan->stamp;
       const FrameResult& result = pipeline->process(*scan);
+      return_free_memory_to_system();
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
       localization.add(result.localization);
@@ -463,6 +464,5 @@ int main(int argc, char** argv) {
     return *status;
   }
   if (options.cpu_time) set_stage_clock(Clock::kThreadCpu);
-  return_large_blocks_to_system();
   return tools::run_job("run_sequence", [&] { return run(options); });
 }

@@ -13,7 +13,6 @@
 #include <string>
 
 #include "adaptive_lego_loam/core/common/params.h"
-#include "adaptive_lego_loam/io/process_memory.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 
@@ -54,9 +53,6 @@ int run_node(int argc, char** argv, const std::string& name) {
   ros::init(argc, argv, name, ros::init_options::NoSigintHandler);
   std::signal(SIGINT, request_node_stop);
   std::signal(SIGTERM, request_node_stop);
-  // A node runs for hours: the one that holds the map gives its large blocks back when freed.
-  // The others keep a fixed working set, which glibc's default reuses without page faults.
-  if constexpr (Node::kHoldsTheMap) return_large_blocks_to_system();
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
   std::unique_ptr<Node> node;
