@@ -138,14 +138,17 @@ def main():
         memory = []  # (scans played, {name: MB})
         next_sample = 0
         while player.poll() is None:
-            if args.skip and counted_scans == scans and len(latency.latencies) >= args.skip:
+            waiting_to_count = args.skip and counted_scans == scans
+            mapped = len(latency.latencies)
+            if waiting_to_count and args.skip <= mapped < scans:
                 before = {pid: cpu_seconds(pid) for pid in processes}
-                counted_scans = scans - len(latency.latencies)
+                counted_scans = scans - mapped
+                waiting_to_count = False
             if args.memory_every and latency.scans >= next_sample:
                 memory.append((latency.scans, {name: resident_mb(pid)
                                                for pid, name in processes.items()}))
                 next_sample += args.memory_every
-            time.sleep(0.2 if counted_scans < scans or not args.skip else 0.005)
+            time.sleep(0.005 if waiting_to_count else 0.2)
         time.sleep(3)
         if args.memory_every:
             memory.append((latency.scans, {name: resident_mb(pid)
