@@ -35,7 +35,7 @@ void VoxelMap::for_each_key(const Cloud& points, Visit&& visit) {
   for (std::size_t i = 0; i < points.size(); ++i)
     keys[i] = voxel_key(points[i], inverse_leaf_);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (i + kAhead < points.size()) voxels_.prefetch(keys[i + kAhead]);
+    if (i + kAhead < points.size()) voxel_index_.prefetch(keys[i + kAhead]);
     visit(points[i], keys[i]);
   }
 }
@@ -49,21 +49,25 @@ void VoxelMap::remove(const Cloud& points) {
 }
 
 void VoxelMap::clear() {
+  voxel_index_.clear();
   voxels_.clear();
+  free_voxels_.clear();
   cell_refs_.clear();
   cells_.clear();
   free_cells_.clear();
 }
 
 void VoxelMap::reserve(std::size_t voxels) {
+  voxel_index_.reserve(voxels);
   voxels_.reserve(voxels);
   cell_refs_.reserve(voxels / 8);
 }
 
 void VoxelMap::add_point(const CloudPoint& p, uint64_t key) {
   bool inserted = false;
-  Voxel& voxel = voxels_.find_or_insert(key, &inserted);
-  if (inserted) attach(key, voxel);
+  uint32_t& index = voxel_index_.find_or_insert(key, &inserted);
+  if (inserted) index = attach(key);
+  Voxel& voxel = voxels_[index];
   voxel.sum[0] += p.x;
   voxel.sum[1] += p.y;
   voxel.sum[2] += p.z;
@@ -76,25 +80,27 @@ void VoxelMap::add_point(const CloudPoint& p, uint64_t key) {
 }
 
 void VoxelMap::remove_point(const CloudPoint& p, uint64_t key) {
-  Voxel* voxel = voxels_.find(key);
-  if (!voxel) return;
-  voxel->sum[0] -= p.x;
-  voxel->sum[1] -= p.y;
-  voxel->sum[2] -= p.z;
-  voxel->sum[3] -= p.intensity;
-  if (--voxel->count == 0) {
-    detach(*voxel);
-    voxels_.erase(key);
+  const uint32_t* index = voxel_index_.find(key);
+  if (!index) return;
+  Voxel& voxel = voxels_[*index];
+  voxel.sum[0] -= p.x;
+  voxel.sum[1] -= p.y;
+  voxel.sum[2] -= p.z;
+  voxel.sum[3] -= p.intensity;
+  if (--voxel.count == 0) {
+    detach(*index);
+    voxel_index_.erase(key);
     return;
   }
-  cells_[voxel->cell].centroids[voxel->slot] =
-      Eigen::Vector3f(static_cast<float>(voxel->sum[0] / voxel->count),
-                      static_cast<float>(voxel->sum[1] / voxel->count),
-                      static_cast<float>(voxel->sum[2] / voxel->count));
+  cells_[voxel.cell].centroids[voxel.slot] =
+      Eigen::Vector3f(static_cast<float>(voxel.sum[0] / voxel.count),
+                      static_cast<float>(voxel.sum[1] / voxel.count),
+                      static_cast<float>(voxel.sum[2] / voxel.count));
 }
 
-// Gives a new voxel a slot in its cell (and the cell a place in cells_ when it is new).
-void VoxelMap::attach(uint64_t key, Voxel& voxel) {
+// A new voxel: an entry in voxels_ and a slot in its cell (and the cell a place in cells_ when it
+// is new). Returns its index in voxels_.
+uint32_t VoxelMap::attach(uint64_t key) {
   auto unpack = [](uint64_t packed, int shift) {
     return static_cast<int64_t>((packed >> shift) & 0x1FFFFF) - (1 << 20);
   };
@@ -111,25 +117,42 @@ void VoxelMap::attach(uint64_t key, Voxel& voxel) {
     }
     cells_[ref.index_plus_one - 1].key = cell_key;
   }
+  uint32_t index;
+  if (free_voxels_.empty()) {
+    index = static_cast<uint32_t>(voxels_.size());
+    voxels_.emplace_back();
+  } else {
+    index = free_voxels_.back();
+    free_voxels_.pop_back();
+    voxels_[index] = Voxel();
+  }
+  Voxel& voxel = voxels_[index];
   voxel.cell = ref.index_plus_one - 1;
   Cell& cell = cells_[voxel.cell];
   voxel.slot = static_cast<uint32_t>(cell.centroids.size());
   cell.centroids.emplace_back(0.f, 0.f, 0.f);
-  cell.voxel_keys.push_back(key);
+  cell.voxels.push_back(index);
   ref.count = static_cast<uint32_t>(cell.centroids.size());
   ref.centroids = cell.centroids.data();
+  return index;
 }
 
-// Frees an emptied voxel's slot: the cell's last voxel takes it.
-void VoxelMap::detach(const Voxel& voxel) {
+// Frees an emptied voxel's entry and its slot in its cell, which the cell's last voxel takes.
+void VoxelMap::detach(uint32_t index) {
+  const Voxel& voxel = voxels_[index];
   Cell& cell = cells_[voxel.cell];
-  const uint64_t moved_key = cell.voxel_keys.back();
+  const uint32_t moved = cell.voxels.back();
   cell.centroids[voxel.slot] = cell.centroids.back();
-  cell.voxel_keys[voxel.slot] = moved_key;
-  voxels_.find(moved_key)->slot = voxel.slot;
+  cell.voxels[voxel.slot] = moved;
+  voxels_[moved].slot = voxel.slot;
   cell.centroids.pop_back();
-  cell.voxel_keys.pop_back();
+  cell.voxels.pop_back();
+  free_voxels_.push_back(index);
   if (cell.centroids.empty()) {
+    // A freed cell's storage goes with it: kept, every reused cell would grow to the largest
+    // any cell ever held.
+    cell.centroids = {};
+    cell.voxels = {};
     cell_refs_.erase(cell.key);
     free_cells_.push_back(voxel.cell);
   } else {
@@ -185,7 +208,7 @@ Cloud VoxelMap::centroids() const {
   out.reserve(size());
   for (const Cell& cell : cells_) {
     for (std::size_t slot = 0; slot < cell.centroids.size(); ++slot) {
-      const Voxel& voxel = *voxels_.find(cell.voxel_keys[slot]);
+      const Voxel& voxel = voxels_[cell.voxels[slot]];
       CloudPoint p;
       p.getVector3fMap() = cell.centroids[slot];
       p.intensity = static_cast<float>(voxel.sum[3] / voxel.count);

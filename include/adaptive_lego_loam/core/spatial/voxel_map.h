@@ -31,7 +31,7 @@ class VoxelMap {
   void clear();  // keeps the memory
   // Room for this many voxels without growing its tables on the way.
   void reserve(std::size_t voxels);
-  std::size_t size() const { return voxels_.size(); }
+  std::size_t size() const { return voxel_index_.size(); }
   bool empty() const { return size() == 0; }
 
   // Up to k voxel centroids nearest to `query` within sqrt(max_squared_distance) (inclusive, and
@@ -44,8 +44,9 @@ class VoxelMap {
   Cloud centroids() const;
 
  private:
-  // A voxel's sums live in the hash table itself (one memory access per point added or removed);
-  // its centroid in its cell, where queries scan it.
+  // A voxel's sums, in one array whose freed entries are reused; the hash table maps a voxel's key
+  // to its index there (16 bytes a slot: the table is kept at most half full, so its slots
+  // outweigh everything else), its cell keeps its centroid, where queries scan it.
   struct Voxel {
     double sum[4] = {0.0, 0.0, 0.0, 0.0};  // x, y, z, intensity
     int count = 0;
@@ -55,7 +56,7 @@ class VoxelMap {
   struct Cell {
     uint64_t key = 0;
     std::vector<Eigen::Vector3f> centroids;
-    std::vector<uint64_t> voxel_keys;  // of the same slots
+    std::vector<uint32_t> voxels;  // of the same slots, in voxels_
   };
 
   // `visit(point, key)` for every point, the hash slot of a later point already on its way from
@@ -64,8 +65,8 @@ class VoxelMap {
   void for_each_key(const Cloud& points, Visit&& visit);
   void add_point(const CloudPoint& p, uint64_t key);
   void remove_point(const CloudPoint& p, uint64_t key);
-  void attach(uint64_t key, Voxel& voxel);
-  void detach(const Voxel& voxel);
+  uint32_t attach(uint64_t key);
+  void detach(uint32_t voxel);
   int64_t cell_of(int64_t voxel_index) const;
 
   double inverse_leaf_;
@@ -73,7 +74,9 @@ class VoxelMap {
   double cell_size_;
   float cell_size_f_;
   float max_squared_radius_;
-  VoxelHashTable<Voxel> voxels_;
+  VoxelHashTable<uint32_t> voxel_index_;  // by voxel key
+  std::vector<Voxel> voxels_;
+  std::vector<uint32_t> free_voxels_;
   // What a query needs of a cell, in the table it looks the cell up in: one memory access less
   // than going through cells_.
   struct CellRef {
