@@ -283,6 +283,8 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   }
   in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
   in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
+  in.number("vertical_prior_weight", m.vertical_prior_weight, 0.0, 1e6);
+  in.number("vertical_prior_max_tilt_deg", m.vertical_prior_max_tilt_deg, 0.0, 45.0);
   in.number("max_motion_change", m.max_motion_change, 0.0, 100.0);
   in.number("max_motion_change_deg", m.max_motion_change_deg, 0.0, 180.0);
   in.reject_unknown_keys();
@@ -306,6 +308,7 @@ void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
   in.boolean("enabled", l.enabled);
   in.number("search_radius", l.search_radius, 0.1, 1000.0);
   in.number("min_time_gap", l.min_time_gap, 0.0, 1.0e6);
+  in.number("min_loop_path", l.min_loop_path, 0.0, 1.0e6);
   in.number("neighbourhood_keyframes", l.neighbourhood_keyframes, 0, 10000);
   in.boolean("place_recognition", l.place.enabled);
   in.number("place_rings", l.place.rings, 2, 200);

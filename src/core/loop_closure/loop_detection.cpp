@@ -113,11 +113,21 @@ const char* to_string(LoopStatus status) {
   return "unknown";
 }
 
+double path_between(const std::vector<Keyframe>& keyframes, int first, int last) {
+  double driven = 0.0;
+  for (int i = first + 1; i <= last; ++i)
+    driven += (keyframes.at(i).pose.translation() - keyframes.at(i - 1).pose.translation()).norm();
+  return driven;
+}
+
+bool far_enough_along(const std::vector<Keyframe>& keyframes, int candidate, int current,
+                      const LoopClosureParams& params) {
+  return path_between(keyframes, candidate, current) >= params.min_loop_path;
+}
+
 bool within_drift_bound(const std::vector<Keyframe>& keyframes, const LoopDetection& loop,
                         const LoopClosureParams& params) {
-  double driven = 0.0;
-  for (int i = loop.matched_index + 1; i <= loop.current_index; ++i)
-    driven += (keyframes.at(i).pose.translation() - keyframes.at(i - 1).pose.translation()).norm();
+  const double driven = path_between(keyframes, loop.matched_index, loop.current_index);
   const Eigen::Isometry3d odometry =
       keyframes.at(loop.matched_index).pose.inverse() * keyframes.at(loop.current_index).pose;
   const double correction = (odometry.inverse() * loop.relative_pose).translation().norm();

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "adaptive_lego_loam/core/odometry/residuals.h"
 
@@ -32,6 +33,44 @@ struct DirectionPrior {
     return true;
   }
 };
+
+// Walls' normals (sensor frame) turned into the map frame have no component along `up`. The sum
+// over patches, sum_i w_i^2 (up . R n_i)^2 = |root R^T up|^2 with root^2 = sum_i w_i^2 n_i n_i^T,
+// is one residual block of three, however many patches.
+struct VerticalWalls {
+  Eigen::Matrix3d root;
+  Eigen::Vector3d up;
+  template <typename T>
+  bool operator()(const T* rotation, T* residual) const {
+    const Eigen::Quaternion<T> q(rotation[3], rotation[0], rotation[1], rotation[2]);
+    const Eigen::Matrix<T, 3, 1> up_in_sensor = q.conjugate() * up.cast<T>();
+    Eigen::Map<Eigen::Matrix<T, 3, 1>> out(residual);
+    out = root.cast<T>() * up_in_sensor;
+    return true;
+  }
+};
+// Each patch weighs by Tukey's biweight of its tilt from vertical at the guess, nothing at
+// max_tilt_deg: a steep slope (an embankment, a battered retaining wall) that the guess shows
+// nearly upright must not pull the map toward it, or each scan's pull tilts the next guess
+// further.
+std::unique_ptr<ceres::CostFunction> vertical_walls_cost(
+    const std::vector<Eigen::Vector3d>& normals, const Eigen::Matrix3d& guess_rotation,
+    const Eigen::Vector3d& up, double weight, double max_tilt_deg) {
+  const double limit = std::sin(max_tilt_deg * M_PI / 180.0);
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& normal : normals) {
+    const double tilt = up.dot(guess_rotation * normal) / limit;
+    if (std::fabs(tilt) >= 1.0) continue;
+    const double biweight = (1.0 - tilt * tilt) * (1.0 - tilt * tilt);
+    sum += biweight * normal * normal.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(weight * weight * sum);
+  const Eigen::Vector3d roots = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  const Eigen::Matrix3d root =
+      solver.eigenvectors() * roots.asDiagonal() * solver.eigenvectors().transpose();
+  return std::make_unique<ceres::AutoDiffCostFunction<VerticalWalls, 3, 4>>(
+      new VerticalWalls{root, up});
+}
 
 // A line through the neighbours when one spread dominates.
 std::optional<LineMatch> fit_line(const Eigen::Vector3f* neighbours,
@@ -163,7 +202,8 @@ ScanToMapMatcher::ScanToMapMatcher(const MappingParams& params) : params_(params
 
 MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfaces,
                                        const LocalMap& map, const Eigen::Isometry3d& guess,
-                                       const std::optional<WeakDirectionPrior>& prior) const {
+                                       const std::optional<WeakDirectionPrior>& prior,
+                                       const std::vector<Eigen::Vector3d>& wall_normals) const {
   MapMatchResult result;
   result.pose = guess;
   if (map.empty()) return result;
@@ -177,6 +217,14 @@ MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfac
   const float keep_distance = static_cast<float>(params_.keep_correspondence_distance);
   CorrespondenceCache<LineMatch> lines(corners, map.corner_map(), fit_line, keep_distance);
   CorrespondenceCache<PlaneMatch> planes(surfaces, map.surface_map(), fit_plane, keep_distance);
+  // The vertical-structure prior, in the frame the map's points are in (the map frame's up moves
+  // with it while placing again).
+  std::unique_ptr<ceres::CostFunction> walls_cost;
+  if (params_.vertical_prior_weight > 0.0 && !wall_normals.empty()) {
+    walls_cost = vertical_walls_cost(
+        wall_normals, placed_guess.linear(), map.to_placement().linear() * Eigen::Vector3d::UnitZ(),
+        params_.vertical_prior_weight, params_.vertical_prior_max_tilt_deg);
+  }
 
   for (int iteration = 0; iteration < params_.max_iterations; ++iteration) {
     const Eigen::Matrix3d rotation_matrix = rotation.toRotationMatrix();
@@ -197,6 +245,7 @@ MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfac
     problem.AddParameterBlock(q, 4, &quaternion_manifold);
     problem.AddParameterBlock(t, 3);
     problem.AddResidualBlock(&cost, nullptr, q, t);
+    if (walls_cost) problem.AddResidualBlock(walls_cost.get(), nullptr, q);
     if (prior && prior->weight > 0.0) {
       prior_cost.reset(new ceres::AutoDiffCostFunction<DirectionPrior, 1, 3>(new DirectionPrior{
           placed_guess.linear() * prior->direction, placed_guess.translation(), prior->weight}));

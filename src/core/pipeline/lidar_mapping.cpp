@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "adaptive_lego_loam/core/mapping/vertical_structure.h"
 #include "adaptive_lego_loam/core/spatial/voxel_filter.h"
 
 namespace adaptive_lego_loam {
@@ -73,9 +74,13 @@ void LidarMapping::start_loop_closure(double stamp) {
   const int newest = static_cast<int>(keyframes_.size()) - 1;
   if (keyframes_[newest].degenerate) return;
   // The candidate search is cheap and runs at every keyframe; the rest at most once a period.
+  auto loop_worthy = [this, newest](const std::optional<LoopCandidate>& candidate) {
+    return candidate &&
+           far_enough_along(keyframes_, candidate->matched_index, newest, loop_params_);
+  };
   std::optional<LoopCandidate> candidate = places_.candidate(keyframes_, newest);
-  if (!candidate) candidate = radius_candidate(keyframes_, newest, loop_params_);
-  if (!candidate) return;
+  if (!loop_worthy(candidate)) candidate = radius_candidate(keyframes_, newest, loop_params_);
+  if (!loop_worthy(candidate)) return;
   if (stamp - last_loop_attempt_ < kLoopAttemptPeriod) return;
   if (stamp - last_closure_ < loop_params_.min_closure_interval) return;
   last_loop_attempt_ = stamp;
@@ -246,10 +251,14 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
     const CloudPtr corners = scan_filter_(*features.less_sharp, params_.scan_corner_voxel);
     const CloudPtr surfaces =
         scan_filter_(*features.less_flat, *features.outliers, params_.scan_surface_voxel);
+    if (params_.vertical_prior_weight > 0.0) {
+      wall_normals_ =
+          wall_normals(*features.less_flat, pose.linear(), params_.vertical_prior_max_tilt_deg);
+    }
     if (localization_) {
       may_be_keyframe = localize(features, *corners, *surfaces, stamp, prior, pose, out);
     } else {
-      out.match = matcher_.match(*corners, *surfaces, local_map_, pose, prior);
+      out.match = matcher_.match(*corners, *surfaces, local_map_, pose, prior, wall_normals_);
       pose = out.match.pose;
     }
     out.times.add("mapping", watch.lap_ms());
@@ -302,7 +311,7 @@ bool LidarMapping::localize(const FeatureSet& features, const Cloud& corners, co
     }
   }
   if (tracker.state() == LocalizationState::kTracking) {
-    out.match = matcher_.match(corners, surfaces, local_map_, pose, prior);
+    out.match = matcher_.match(corners, surfaces, local_map_, pose, prior, wall_normals_);
     pose = out.match.pose;
     tracker.assess(out.match, corners.size() + surfaces.size());
     // The last scans before the track was lost may have put wrong keyframes in the map.

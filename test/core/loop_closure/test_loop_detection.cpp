@@ -294,3 +294,26 @@ TEST(LoopClosure, DriftBoundKeepsDriftSizedCorrectionsAndRejectsLookAlikes) {
   loop.relative_pose.translation() += Eigen::Vector3d(24.0, 0.0, 0.0);
   EXPECT_FALSE(within_drift_bound(keyframes, loop, params));
 }
+
+TEST(LoopClosure, ALoopNeedsAPathBetweenItsEnds) {
+  // 30 keyframes jittering around one spot (a standstill, or odometry stalled in a tunnel), then
+  // 100 m down a road and back: only the return is far enough along the path to close a loop.
+  std::vector<Keyframe> keyframes;
+  for (int i = 0; i < 30; ++i) {
+    Keyframe keyframe;
+    keyframe.index = i;
+    keyframe.pose.translation() = Eigen::Vector3d(0.2 * (i % 2), 0.1 * (i % 3), 0.0);
+    keyframes.push_back(keyframe);
+  }
+  for (int i = 1; i <= 200; ++i) {
+    Keyframe keyframe;
+    keyframe.index = static_cast<int>(keyframes.size());
+    keyframe.pose.translation() = Eigen::Vector3d(i <= 100 ? i : 200 - i, 0.0, 0.0);
+    keyframes.push_back(keyframe);
+  }
+  LoopClosureParams params;  // 40 m
+  EXPECT_NEAR(path_between(keyframes, 29, 129), 100.0, 0.5);
+  EXPECT_FALSE(far_enough_along(keyframes, 0, 29, params));
+  EXPECT_TRUE(far_enough_along(keyframes, 0, static_cast<int>(keyframes.size()) - 1, params));
+  EXPECT_FALSE(far_enough_along(keyframes, 200, 229, params));  // 29 m back along the road
+}

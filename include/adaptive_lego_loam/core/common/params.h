@@ -161,6 +161,10 @@ struct MappingParams {
   // Weight of a prior pulling the translation along the ambient filter's weak direction toward
   // the odometry's prediction, times mu; 0 turns it off.
   double weak_direction_prior = 0.0;
+  // The vertical-structure prior (core/mapping/vertical_structure.h): the weight of each wall
+  // patch's residual, its normal's vertical component in the map frame; 0 turns it off.
+  double vertical_prior_weight = 0.0;
+  double vertical_prior_max_tilt_deg = 5.0;  // patches this near a vertical wall count as walls
   // The guess for scan-to-map: the odometry's motion, unless it differs from the previous scan's
   // mapped motion by more than this (m per scan) or max_motion_change_deg; then that motion
   // (constant velocity). 0 = off. A vehicle cannot change its speed by 0.3 m per scan at 10 Hz.
@@ -198,6 +202,7 @@ struct LoopClosureParams {
   PlaceRecognitionParams place;
   double search_radius = 7.0;        // m: radius-search candidates lie this close ...
   double min_time_gap = 30.0;        // s: and every candidate is at least this much older
+  double min_loop_path = 40.0;       // m: ... and this far back along the path driven
   int neighbourhood_keyframes = 25;  // the candidate's map: it and this many on either side
   // Verification: the current keyframe's points within verify_radius (the candidate's map holds
   // merged keyframes' points that near, MappingParams::keyframe_merge_radius) after ICP; accepted

@@ -80,6 +80,15 @@ LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_in
 LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
                           const LoopClosureParams& params);
 
+// The path driven from keyframe `first` to keyframe `last` (m, along the keyframes).
+double path_between(const std::vector<Keyframe>& keyframes, int first, int last);
+
+// Whether a candidate lies at least min_loop_path back along the path from the current keyframe:
+// a loop returns after going somewhere. A drive that stands still, or whose odometry does (a
+// tunnel's smooth walls), returns nowhere, however alike its keyframes look.
+bool far_enough_along(const std::vector<Keyframe>& keyframes, int candidate, int current,
+                      const LoopClosureParams& params);
+
 // Whether an accepted loop moves its current keyframe, from where the odometry put it relative to
 // the matched one, by at most max_drift_fraction of the path between them (along the keyframes)
 // plus max_drift_offset: more than odometry drifts is a place that only looks the same.

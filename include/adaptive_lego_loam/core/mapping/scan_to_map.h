@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <optional>
+#include <vector>
 
 #include "adaptive_lego_loam/core/common/cloud.h"
 #include "adaptive_lego_loam/core/common/params.h"
@@ -33,9 +34,12 @@ class ScanToMapMatcher {
  public:
   explicit ScanToMapMatcher(const MappingParams& params);
   // `corners` and `surfaces` in the sensor frame; `guess` the sensor pose in the map.
+  // `wall_normals` (sensor frame, from wall_normals()) feed the vertical-structure prior when
+  // params.vertical_prior_weight > 0.
   MapMatchResult match(const Cloud& corners, const Cloud& surfaces, const LocalMap& map,
                        const Eigen::Isometry3d& guess,
-                       const std::optional<WeakDirectionPrior>& prior = std::nullopt) const;
+                       const std::optional<WeakDirectionPrior>& prior = std::nullopt,
+                       const std::vector<Eigen::Vector3d>& wall_normals = {}) const;
 
  private:
   MappingParams params_;

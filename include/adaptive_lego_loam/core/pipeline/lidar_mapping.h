@@ -129,6 +129,7 @@ class LidarMapping {
   // Their tables sized by what each filters: the scan's few coarse voxels, a keyframe's many.
   VoxelFilter scan_filter_, keyframe_filter_;
   std::vector<Keyframe> keyframes_;
+  std::vector<Eigen::Vector3d> wall_normals_;  // this scan's, for the vertical-structure prior
   int scans_ = 0;
   std::optional<Eigen::Isometry3d> last_odometry_pose_;
   std::optional<Eigen::Isometry3d> last_mapped_motion_;
