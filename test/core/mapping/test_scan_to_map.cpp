@@ -40,16 +40,29 @@ CloudPtr room_corner() {
   return cloud;
 }
 
-}  // namespace
-
-TEST(ScanToMap, MatchesThroughTheOldPlacementAfterALoop) {
+// Scan-to-map on a map of one keyframe: in the map at once, five correspondence searches.
+MappingParams one_keyframe_params() {
   MappingParams params;
   params.local_map_lag_keyframes = 0;
   params.max_iterations = 5;
-  LocalMap map(params);
+  return params;
+}
+
+// A keyframe at `pose` holding the room corner as its surfaces.
+Keyframe room_keyframe(const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity()) {
   Keyframe keyframe;
+  keyframe.pose = pose;
   keyframe.corners = pack(Cloud());
   keyframe.surfaces = pack(*room_corner());
+  return keyframe;
+}
+
+}  // namespace
+
+TEST(ScanToMap, MatchesThroughTheOldPlacementAfterALoop) {
+  const MappingParams params = one_keyframe_params();
+  LocalMap map(params);
+  Keyframe keyframe = room_keyframe();
   map.update({keyframe}, Eigen::Vector3d::Zero());
 
   Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
@@ -76,15 +89,11 @@ TEST(ScanToMap, MatchesThroughTheOldPlacementAfterALoop) {
 TEST(ScanToMap, TheVerticalPriorKeepsWallsUprightAgainstATiltedMap) {
   // A map that drifted 2 deg in roll, and a level sensor at its origin: the scan alone follows
   // the map's tilt; with the prior the scan's walls stay vertical and the pose stays level.
-  MappingParams params;
-  params.local_map_lag_keyframes = 0;
-  params.max_iterations = 5;
+  MappingParams params = one_keyframe_params();
   LocalMap map(params);
-  Keyframe keyframe;
-  keyframe.corners = pack(Cloud());
-  keyframe.pose.linear() = Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()).matrix();
-  keyframe.surfaces = pack(*room_corner());
-  map.update({keyframe}, Eigen::Vector3d::Zero());
+  Eigen::Isometry3d tilted = Eigen::Isometry3d::Identity();
+  tilted.linear() = Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()).matrix();
+  map.update({room_keyframe(tilted)}, Eigen::Vector3d::Zero());
   const CloudPtr scan = voxel_filter(*room_corner(), 0.3);
   auto roll_deg = [](const MapMatchResult& result) {
     const Eigen::Vector3d up = result.pose.linear() * Eigen::Vector3d::UnitZ();
