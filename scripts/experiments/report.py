@@ -430,10 +430,12 @@ command (`--data DIR` or `ALEGO_DATA`: the folder with `kitti_odometry/` and
 `clustering_bench/`).{' **This is the quick suite: one seed, 100 scans, three scenarios.**' if quick else ''}
 
 Methods: LeGO-LOAM's depth-clustering threshold beta0 fixed at 10, 30 and 60 deg (`run_sequence
---beta0`), the adaptive beta0 of the paper (`--adaptive`, Euclidean criterion and window of the
-config: the authors' range-difference test, w 5), the same with the distance test of the paper's
-text and w 3 (`adaptive d3`, `ambient_filter.euclidean_criterion: distance`,
-`euclidean_window: 3`), and no segmentation at all (`--no-segmentation`, every non-ground point
+--beta0`), the adaptive beta0 of the paper (`--adaptive`, with the config's Euclidean criterion
+and window, the authors' range-difference test with w 5, and its map from mu to beta0: 10-20 deg
+on the HDL-64E, the paper's 10-60 on the VLP-16), the same with the distance test of the paper's text and w 3
+(`adaptive d3`, `ambient_filter.euclidean_criterion: distance`, `euclidean_window: 3`), the same
+with the paper's 10-60 deg map (`adaptive 10-60`, `ambient_filter.beta0_max_deg: 60`), and no
+segmentation at all (`--no-segmentation`, every non-ground point
 kept, LOAM-like). Scenarios are simulated
 (`lidar_sim`, [simulator.md](simulator.md)) with exact ground truth, along the real KITTI
 trajectory named where there is one; each is driven with {len(set(r['seed'] for r in self.results['simulated']))}

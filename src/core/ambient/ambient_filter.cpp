@@ -75,8 +75,8 @@ void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
     return;
   }
   estimate_degeneration(result);
-  // Step 9 from step 5's strict clusters: beta0 lies between beta0_min and beta0_max, so with
-  // the usual beta0_min < beta0_max the clusters only merge (recluster() handles either way).
+  // Step 9 from step 5's strict clusters: with beta0 below the skeleton's threshold the clusters
+  // only merge (recluster() handles either way).
   SegmentationResult& segmentation = result.segmentation;
   Stopwatch watch;
   strict_depth_.recluster(segmentation.image, result.beta0_deg, segmenter_.params().size_rule,
@@ -98,7 +98,7 @@ void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {
 
   // Surfaces: depth clusters at the strict threshold, kept on size alone.
   const ClusterSizeRule surface_rule{ambient.skeleton_depth_min_points, INT_MAX, INT_MAX};
-  strict_depth_.cluster(image, segmentation.ground, ambient.beta0_max_deg, surface_rule,
+  strict_depth_.cluster(image, segmentation.ground, ambient.skeleton_beta0_deg, surface_rule,
                         result.skeleton_depth);
   result.skeleton_points =
       extract_skeleton(result.euclidean, result.skeleton_depth, result.skeleton);

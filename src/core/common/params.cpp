@@ -204,6 +204,7 @@ void read_ambient(SectionReader& in, AmbientFilterParams& a) {
              {"none", Beta0Mode::kNone}});
   in.number("beta0_min_deg", a.beta0_min_deg, 0.1, 89.9);
   in.number("beta0_max_deg", a.beta0_max_deg, 0.1, 89.9);
+  in.number("skeleton_beta0_deg", a.skeleton_beta0_deg, 0.1, 89.9);
   in.number("fixed_beta0_deg", a.fixed_beta0_deg, 0.1, 89.9);
   in.number("euclidean_window", a.euclidean_window, 1, 10);
   in.number("euclidean_gamma", a.euclidean_gamma, 0.1, 100.0);

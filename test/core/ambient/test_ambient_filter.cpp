@@ -36,6 +36,31 @@ TEST(AmbientFilter, SameInputGivesBitIdenticalMu) {
   EXPECT_EQ(a.beta0_deg, b.beta0_deg);
 }
 
+// The skeleton (and so mu) comes from its own strict threshold; beta0's range only maps mu.
+TEST(AmbientFilter, TheSkeletonKeepsItsThresholdWhateverBeta0sRange) {
+  const Config kitti = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  const Scan scan =
+      read_kitti_bin(std::string(TEST_DATA_DIR) + "/kitti_seq07/velodyne/0000000001.bin");
+  auto filtered = [&](double beta0_max_deg, double skeleton_beta0_deg) {
+    Config config = kitti;
+    config.ambient.beta0_min_deg = 10.0;
+    config.ambient.beta0_max_deg = beta0_max_deg;
+    config.ambient.skeleton_beta0_deg = skeleton_beta0_deg;
+    AmbientFilterResult result;
+    AmbientFilter(config).process(scan, result);
+    return result;
+  };
+  const AmbientFilterResult paper = filtered(60.0, 60.0);
+  const AmbientFilterResult narrow = filtered(20.0, 60.0);
+  ASSERT_TRUE(paper.degeneration.valid);
+  EXPECT_EQ(narrow.skeleton_points, paper.skeleton_points);
+  EXPECT_DOUBLE_EQ(narrow.mu, paper.mu);
+  EXPECT_DOUBLE_EQ(narrow.beta0_deg, paper.mu * (10.0 - 20.0) + 20.0);
+  EXPECT_LT(narrow.beta0_deg, paper.beta0_deg);
+  // A lenient threshold for the skeleton joins more pairs into large clusters.
+  EXPECT_GT(filtered(20.0, 20.0).skeleton_points, paper.skeleton_points);
+}
+
 TEST(AmbientFilter, ScanWithoutSkeletonKeepsPreviousBeta0) {
   const Config config = synthetic_config();
   AmbientFilter ambient(config);

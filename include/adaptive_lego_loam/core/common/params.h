@@ -70,9 +70,10 @@ const char* to_string(EuclideanCriterion criterion);  // "distance", "range_diff
 
 struct AmbientFilterParams {
   Beta0Mode mode = Beta0Mode::kAdaptive;
-  double beta0_min_deg = 10.0;    // lenient end: used when mu = 1 (degenerate scene)
-  double beta0_max_deg = 60.0;    // strict end: used when mu = 0, and for the skeleton
-  double fixed_beta0_deg = 60.0;  // used when mode is kFixed
+  double beta0_min_deg = 10.0;       // lenient end: used when mu = 1 (degenerate scene)
+  double beta0_max_deg = 60.0;       // strict end: used when mu = 0
+  double skeleton_beta0_deg = 60.0;  // step 5: the skeleton's strict depth clusters
+  double fixed_beta0_deg = 60.0;     // used when mode is kFixed
   // Step 4: adaptive Euclidean clustering on the range image.
   int euclidean_window = 5;  // w: the window is (2w+1) x (2w+1)
   double euclidean_gamma = 1.2;
