@@ -419,6 +419,13 @@ class Report:
 
         return re.sub(r"\{\{([^}|]+)(?:\|(\d))?\}\}", value, text)
 
+    def beta0_map(self, config):
+        """'A-B deg': the range a sensor's config maps mu over (ambient_filter.beta0_min/max_deg)."""
+        text = (self.root / "config" / config).read_text()
+        ends = [re.search(rf"^  {key}:\s*([\d.]+)", text, flags=re.M).group(1)
+                for key in ("beta0_min_deg", "beta0_max_deg")]
+        return "-".join(f"{float(end):g}" for end in ends) + " deg"
+
     def write(self):
         quick = self.results["quick"]
         sections = [f"""# Results
@@ -431,9 +438,10 @@ command (`--data DIR` or `ALEGO_DATA`: the folder with `kitti_odometry/` and
 
 Methods: LeGO-LOAM's depth-clustering threshold beta0 fixed at 10, 30 and 60 deg (`run_sequence
 --beta0`), the adaptive beta0 of the paper (`--adaptive`, with the config's Euclidean criterion
-and window, the authors' range-difference test with w 5, and its map from mu to beta0: 10-20 deg
-on the HDL-64E, the paper's 10-60 on the VLP-16), the same with the distance test of the paper's text and w 3
-(`adaptive d3`, `ambient_filter.euclidean_criterion: distance`, `euclidean_window: 3`), the same
+and window, the authors' range-difference test with w 5, and its map from mu to beta0:
+{self.beta0_map("kitti.yaml")} on the HDL-64E, {self.beta0_map("vlp16.yaml")} on the VLP-16), the
+same with the distance test of the paper's text and w 3 (`adaptive d3`,
+`ambient_filter.euclidean_criterion: distance`, `euclidean_window: 3`), the same
 with the paper's 10-60 deg map (`adaptive 10-60`, `ambient_filter.beta0_max_deg: 60`), and no
 segmentation at all (`--no-segmentation`, every non-ground point
 kept, LOAM-like). Scenarios are simulated
