@@ -133,6 +133,61 @@ std::size_t checked_row_step(const PackedPoints& packed, const std::string& sour
   return row_step;
 }
 
+// The fields a point is read from: coordinates, then the optional ones (null when absent).
+struct PointFieldSet {
+  const FieldDescription *x, *y, *z, *intensity, *ring, *time;
+};
+
+bool has_type(const FieldDescription* field, FieldType type) {
+  return !field || field->datatype == static_cast<uint8_t>(type);
+}
+
+// What nearly every driver sends: little-endian float32 coordinates, intensity and time in
+// seconds, a uint16 ring. Read without a switch on the type of every value, which costs more
+// than the rest of the decoding.
+bool native_layout(const PackedPoints& packed, const PointFieldSet& f) {
+  return !packed.big_endian && has_type(f.x, FieldType::kFloat32) &&
+         has_type(f.y, FieldType::kFloat32) && has_type(f.z, FieldType::kFloat32) &&
+         has_type(f.intensity, FieldType::kFloat32) && has_type(f.ring, FieldType::kUint16) &&
+         has_type(f.time, FieldType::kFloat32);
+}
+
+void decode_native(const PackedPoints& packed, std::size_t row_step, const PointFieldSet& f,
+                   Scan& scan) {
+  ScanPoint* p = scan.points.data();
+  for (uint32_t row = 0; row < packed.height; ++row) {
+    const uint8_t* record = packed.data + row * row_step;
+    for (uint32_t column = 0; column < packed.width; ++column, ++p, record += packed.point_step) {
+      p->x = load<float>(record + f.x->offset, false);
+      p->y = load<float>(record + f.y->offset, false);
+      p->z = load<float>(record + f.z->offset, false);
+      p->intensity = f.intensity ? load<float>(record + f.intensity->offset, false) : 0.f;
+      p->ring = f.ring ? load<uint16_t>(record + f.ring->offset, false) : -1;
+      p->time = f.time ? load<float>(record + f.time->offset, false) : 0.f;
+    }
+  }
+}
+
+void decode_any(const PackedPoints& packed, std::size_t row_step, const PointFieldSet& f,
+                double time_scale, Scan& scan) {
+  const bool swap = packed.big_endian;
+  const auto read = [swap](const uint8_t* record, const FieldDescription* field) {
+    return read_value(record + field->offset, field->datatype, swap);
+  };
+  ScanPoint* p = scan.points.data();
+  for (uint32_t row = 0; row < packed.height; ++row) {
+    const uint8_t* record = packed.data + row * row_step;
+    for (uint32_t column = 0; column < packed.width; ++column, ++p, record += packed.point_step) {
+      p->x = static_cast<float>(read(record, f.x));
+      p->y = static_cast<float>(read(record, f.y));
+      p->z = static_cast<float>(read(record, f.z));
+      p->intensity = f.intensity ? static_cast<float>(read(record, f.intensity)) : 0.f;
+      p->ring = f.ring ? ring_value(read(record, f.ring)) : -1;
+      p->time = f.time ? static_cast<float>(read(record, f.time) * time_scale) : 0.f;
+    }
+  }
+}
+
 }  // namespace
 
 void decode_points(const PackedPoints& packed, const std::string& source, Scan& scan) {
@@ -159,22 +214,11 @@ void decode_points(const PackedPoints& packed, const std::string& source, Scan& 
   // Every field of every point is written below: the buffer of a scan before leaves nothing.
   scan.points.resize(empty ? 0 : std::size_t{packed.width} * packed.height);
   if (empty) return;
-  const bool swap = packed.big_endian;
-  ScanPoint* p = scan.points.data();
-  for (uint32_t row = 0; row < packed.height; ++row) {
-    const uint8_t* record = packed.data + row * row_step;
-    for (uint32_t column = 0; column < packed.width; ++column, ++p, record += packed.point_step) {
-      p->x = static_cast<float>(read_value(record + x->offset, x->datatype, swap));
-      p->y = static_cast<float>(read_value(record + y->offset, y->datatype, swap));
-      p->z = static_cast<float>(read_value(record + z->offset, z->datatype, swap));
-      p->intensity = intensity ? static_cast<float>(read_value(record + intensity->offset,
-                                                               intensity->datatype, swap))
-                               : 0.f;
-      p->ring = ring ? ring_value(read_value(record + ring->offset, ring->datatype, swap)) : -1;
-      p->time = time ? static_cast<float>(read_value(record + time->offset, time->datatype, swap) *
-                                          time_scale)
-                     : 0.f;
-    }
+  const PointFieldSet fields{x, y, z, intensity, ring, time};
+  if (native_layout(packed, fields)) {
+    decode_native(packed, row_step, fields, scan);
+  } else {
+    decode_any(packed, row_step, fields, time_scale, scan);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 #include <vector>
 
 #include "adaptive_lego_loam/io/io_error.h"
@@ -46,6 +47,53 @@ TEST(PointFields, DecodesIntegerRingAndNanosecondTime) {
   EXPECT_EQ(scan.points[0].ring, 7);
   EXPECT_FLOAT_EQ(scan.points[0].time, 0.05f);
   EXPECT_EQ(scan.points[1].z, 6.f);
+}
+
+// A driver's usual layout (float32 x y z intensity time, uint16 ring, read without a type switch)
+// and the same points in doubles (read value by value) give the same scan.
+TEST(PointFields, TheUsualLayoutAndDoublesDecodeAlike) {
+  struct Usual {
+    float x, y, z, intensity;
+    uint16_t ring;
+    float time;
+  } __attribute__((packed));
+  struct Doubles {
+    double x, y, z, intensity;
+    uint16_t ring;
+    double time;
+  } __attribute__((packed));
+  const Usual usual[2] = {{1.5f, -2.25f, 3, 40, 15, 0.025f}, {-4, 5.125f, -6.5f, 0, 0, 0.099f}};
+  Doubles doubles[2];
+  for (int i = 0; i < 2; ++i) {
+    doubles[i] = {usual[i].x,         usual[i].y,    usual[i].z,
+                  usual[i].intensity, usual[i].ring, usual[i].time};
+  }
+  const Scan fast = decode_points(packed_rows(usual, {{"x", 0, 7, 1},
+                                                      {"y", 4, 7, 1},
+                                                      {"z", 8, 7, 1},
+                                                      {"intensity", 12, 7, 1},
+                                                      {"ring", 16, 4, 1},
+                                                      {"time", 18, 7, 1}}),
+                                  "usual");
+  const Scan slow = decode_points(packed_rows(doubles, {{"x", 0, 8, 1},
+                                                        {"y", 8, 8, 1},
+                                                        {"z", 16, 8, 1},
+                                                        {"intensity", 24, 8, 1},
+                                                        {"ring", 32, 4, 1},
+                                                        {"time", 34, 8, 1}}),
+                                  "doubles");
+  ASSERT_EQ(fast.points.size(), 2u);
+  ASSERT_EQ(slow.points.size(), 2u);
+  EXPECT_TRUE(fast.has_ring && fast.has_time);
+  for (int i = 0; i < 2; ++i) {
+    const ScanPoint &a = fast.points[i], &b = slow.points[i];
+    EXPECT_EQ(a.x, usual[i].x);
+    EXPECT_EQ(a.z, usual[i].z);
+    EXPECT_EQ(a.ring, usual[i].ring);
+    EXPECT_EQ(a.time, usual[i].time);
+    EXPECT_EQ(std::tie(a.x, a.y, a.z, a.intensity, a.ring, a.time),
+              std::tie(b.x, b.y, b.z, b.intensity, b.ring, b.time));
+  }
 }
 
 // Coordinates as 16-bit integers (as some drivers pack them) are read as the numbers they hold.

@@ -288,6 +288,7 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   in.number("vertical_prior_max_tilt_deg", m.vertical_prior_max_tilt_deg, 0.0, 45.0);
   in.number("max_motion_change", m.max_motion_change, 0.0, 100.0);
   in.number("max_motion_change_deg", m.max_motion_change_deg, 0.0, 180.0);
+  in.number("max_gated_scans", m.max_gated_scans, 0, 1000);
   in.reject_unknown_keys();
 }
 

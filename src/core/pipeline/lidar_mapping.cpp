@@ -182,6 +182,13 @@ bool LidarMapping::motion_is_plausible(const Eigen::Isometry3d& motion) const {
   return translation_ok && rotation_ok;
 }
 
+bool LidarMapping::gate_motion(const Eigen::Isometry3d& motion) {
+  const bool released = params_.max_gated_scans > 0 && gated_in_a_row_ >= params_.max_gated_scans;
+  const bool gated = !released && !motion_is_plausible(motion);
+  gated_in_a_row_ = gated ? gated_in_a_row_ + 1 : 0;
+  return gated;
+}
+
 bool LidarMapping::needs_keyframe() const {
   // The first keyframe of this drive (a saved map's keyframes are not its own).
   const int own_first = localization_ ? localization_->map_keyframes() : 0;
@@ -237,7 +244,7 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   last_odometry_pose_ = odometry_pose;
   // A large object moving along with the sensor (a truck overtaking) can drag the scan-to-scan
   // estimate; scan-to-map then starts from the previous velocity instead.
-  out.motion_gated = !motion_is_plausible(motion);
+  out.motion_gated = gate_motion(motion);
   Eigen::Isometry3d pose = pose_ * (out.motion_gated ? *last_mapped_motion_ : motion);
   const Eigen::Isometry3d previous_pose = pose_;
   out.match = MapMatchResult();

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
 
@@ -56,9 +58,10 @@ Eigen::Isometry3d along_x(double x) {
 }
 
 // Mapping without loop closure, of a sensor whose sweeps come de-skewed.
-Config gated_config(double max_motion_change) {
+Config gated_config(double max_motion_change, int max_gated_scans = 0) {
   Config config;
   config.mapping.max_motion_change = max_motion_change;
+  config.mapping.max_gated_scans = max_gated_scans;
   config.mapping.max_motion_change_deg = 5.0;
   config.loop_closure.enabled = false;
   config.sensor.deskewed = true;
@@ -86,9 +89,52 @@ std::pair<double, bool> mapped_x_when_odometry_stalls(const Config& config, int 
 
 TEST(MotionGate, StalledOdometryOnRepeatingPostsKeepsTheVelocity) {
   const int stalled = 6;
-  const auto [gated_x, gated] = mapped_x_when_odometry_stalls(gated_config(0.3), stalled);
-  EXPECT_TRUE(gated);
-  EXPECT_NEAR(gated_x, stalled * kSpeed, 0.05);
+  for (int max_gated_scans : {0, 3}) {
+    const auto [gated_x, gated] =
+        mapped_x_when_odometry_stalls(gated_config(0.3, max_gated_scans), stalled);
+    EXPECT_TRUE(gated) << "max_gated_scans " << max_gated_scans;
+    EXPECT_NEAR(gated_x, stalled * kSpeed, 0.05) << "max_gated_scans " << max_gated_scans;
+  }
+}
+
+namespace {
+
+// The vehicle drives at kSpeed, then stands still (an abrupt stop the gate cannot tell from a
+// dragged odometry); returns, per scan after the stop, the mapped step and whether it was gated.
+std::vector<std::pair<double, bool>> steps_after_a_stop(const Config& config) {
+  const int driving = 6, standing = 8;
+  LidarMapping mapping(config);
+  MappingOutput out;
+  std::vector<std::pair<double, bool>> steps;
+  double x = 0.0, mapped_x = 0.0;
+  for (int scan = 0; scan < driving + standing; ++scan) {
+    if (scan > 0 && scan < driving) x += kSpeed;
+    mapping.process(highway_features(x), along_x(x), 0.1 * scan, std::nullopt, out);
+    if (scan >= driving)
+      steps.emplace_back(out.pose.translation().x() - mapped_x, out.motion_gated);
+    mapped_x = out.pose.translation().x();
+  }
+  return steps;
+}
+
+}  // namespace
+
+TEST(MotionGate, NeverLettingGoKeepsDrivingAfterAStop) {
+  for (const auto& [step, gated] : steps_after_a_stop(gated_config(0.3, 0))) {
+    EXPECT_TRUE(gated);
+    EXPECT_NEAR(step, kSpeed, 0.05);
+  }
+}
+
+TEST(MotionGate, LetsTheOdometryBackInAfterMaxGatedScans) {
+  const int max_gated_scans = 3;
+  const auto steps = steps_after_a_stop(gated_config(0.3, max_gated_scans));
+  for (int scan = 0; scan < static_cast<int>(steps.size()); ++scan) {
+    const auto [step, gated] = steps[scan];
+    const bool held = scan < max_gated_scans;
+    EXPECT_EQ(gated, held) << "scan " << scan << " after the stop";
+    EXPECT_NEAR(step, held ? kSpeed : 0.0, 0.05) << "scan " << scan << " after the stop";
+  }
 }
 
 TEST(MotionGate, WithoutTheGateTheMapAgreesWithTheStalledOdometry) {

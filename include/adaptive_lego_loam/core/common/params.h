@@ -171,6 +171,9 @@ struct MappingParams {
   // (constant velocity). 0 = off. A vehicle cannot change its speed by 0.3 m per scan at 10 Hz.
   double max_motion_change = 0.0;
   double max_motion_change_deg = 0.0;
+  // After this many scans in a row gated, the odometry's motion is taken again: a velocity that
+  // scan-to-map could not correct must not hold every later scan. 0 = the gate never lets go.
+  int max_gated_scans = 0;
 };
 
 // Robust loss on a pose-graph edge's whitened residual norm |r| (in sigmas). kHuber: quadratic up

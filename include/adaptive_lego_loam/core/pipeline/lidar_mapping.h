@@ -82,6 +82,8 @@ class LidarMapping {
 
  private:
   bool motion_is_plausible(const Eigen::Isometry3d& motion) const;
+  // Whether this scan's guess keeps the last mapped motion (counts the scans gated in a row).
+  bool gate_motion(const Eigen::Isometry3d& motion);
   bool needs_keyframe() const;
   void add_keyframe(const FeatureSet& features, double stamp, bool degenerate);
   Keyframe make_keyframe(const FeatureSet& features, double stamp, const Eigen::Isometry3d& pose,
@@ -133,6 +135,7 @@ class LidarMapping {
   int scans_ = 0;
   std::optional<Eigen::Isometry3d> last_odometry_pose_;
   std::optional<Eigen::Isometry3d> last_mapped_motion_;
+  int gated_in_a_row_ = 0;
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
   // Per scan: the keyframe it hangs from and its pose relative to that keyframe (-1 and the pose
   // itself before the first keyframe).
