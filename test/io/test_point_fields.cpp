@@ -87,10 +87,13 @@ TEST(PointFields, TheUsualLayoutAndDoublesDecodeAlike) {
   EXPECT_TRUE(fast.has_ring && fast.has_time);
   for (int i = 0; i < 2; ++i) {
     const ScanPoint &a = fast.points[i], &b = slow.points[i];
-    EXPECT_EQ(a.x, usual[i].x);
-    EXPECT_EQ(a.z, usual[i].z);
-    EXPECT_EQ(a.ring, usual[i].ring);
-    EXPECT_EQ(a.time, usual[i].time);
+    // Copies: a packed member cannot be bound to the reference EXPECT_EQ takes.
+    const float x = usual[i].x, z = usual[i].z, time = usual[i].time;
+    const int ring = usual[i].ring;
+    EXPECT_EQ(a.x, x);
+    EXPECT_EQ(a.z, z);
+    EXPECT_EQ(a.ring, ring);
+    EXPECT_EQ(a.time, time);
     EXPECT_EQ(std::tie(a.x, a.y, a.z, a.intensity, a.ring, a.time),
               std::tie(b.x, b.y, b.z, b.intensity, b.ring, b.time));
   }
