@@ -152,20 +152,28 @@ bool native_layout(const PackedPoints& packed, const PointFieldSet& f) {
          has_type(f.time, FieldType::kFloat32);
 }
 
-void decode_native(const PackedPoints& packed, std::size_t row_step, const PointFieldSet& f,
-                   Scan& scan) {
+// Calls read_point(record, point) for every record of `packed`, in order, into scan.points.
+template <typename ReadPoint>
+void for_each_record(const PackedPoints& packed, std::size_t row_step, Scan& scan,
+                     ReadPoint read_point) {
   ScanPoint* p = scan.points.data();
   for (uint32_t row = 0; row < packed.height; ++row) {
     const uint8_t* record = packed.data + row * row_step;
-    for (uint32_t column = 0; column < packed.width; ++column, ++p, record += packed.point_step) {
-      p->x = load<float>(record + f.x->offset, false);
-      p->y = load<float>(record + f.y->offset, false);
-      p->z = load<float>(record + f.z->offset, false);
-      p->intensity = f.intensity ? load<float>(record + f.intensity->offset, false) : 0.f;
-      p->ring = f.ring ? load<uint16_t>(record + f.ring->offset, false) : -1;
-      p->time = f.time ? load<float>(record + f.time->offset, false) : 0.f;
-    }
+    for (uint32_t column = 0; column < packed.width; ++column, ++p, record += packed.point_step)
+      read_point(record, *p);
   }
+}
+
+void decode_native(const PackedPoints& packed, std::size_t row_step, const PointFieldSet& f,
+                   Scan& scan) {
+  for_each_record(packed, row_step, scan, [&f](const uint8_t* record, ScanPoint& p) {
+    p.x = load<float>(record + f.x->offset, false);
+    p.y = load<float>(record + f.y->offset, false);
+    p.z = load<float>(record + f.z->offset, false);
+    p.intensity = f.intensity ? load<float>(record + f.intensity->offset, false) : 0.f;
+    p.ring = f.ring ? load<uint16_t>(record + f.ring->offset, false) : -1;
+    p.time = f.time ? load<float>(record + f.time->offset, false) : 0.f;
+  });
 }
 
 void decode_any(const PackedPoints& packed, std::size_t row_step, const PointFieldSet& f,
@@ -174,18 +182,14 @@ void decode_any(const PackedPoints& packed, std::size_t row_step, const PointFie
   const auto read = [swap](const uint8_t* record, const FieldDescription* field) {
     return read_value(record + field->offset, field->datatype, swap);
   };
-  ScanPoint* p = scan.points.data();
-  for (uint32_t row = 0; row < packed.height; ++row) {
-    const uint8_t* record = packed.data + row * row_step;
-    for (uint32_t column = 0; column < packed.width; ++column, ++p, record += packed.point_step) {
-      p->x = static_cast<float>(read(record, f.x));
-      p->y = static_cast<float>(read(record, f.y));
-      p->z = static_cast<float>(read(record, f.z));
-      p->intensity = f.intensity ? static_cast<float>(read(record, f.intensity)) : 0.f;
-      p->ring = f.ring ? ring_value(read(record, f.ring)) : -1;
-      p->time = f.time ? static_cast<float>(read(record, f.time) * time_scale) : 0.f;
-    }
-  }
+  for_each_record(packed, row_step, scan, [&](const uint8_t* record, ScanPoint& p) {
+    p.x = static_cast<float>(read(record, f.x));
+    p.y = static_cast<float>(read(record, f.y));
+    p.z = static_cast<float>(read(record, f.z));
+    p.intensity = f.intensity ? static_cast<float>(read(record, f.intensity)) : 0.f;
+    p.ring = f.ring ? ring_value(read(record, f.ring)) : -1;
+    p.time = f.time ? static_cast<float>(read(record, f.time) * time_scale) : 0.f;
+  });
 }
 
 }  // namespace
