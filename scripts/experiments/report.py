@@ -483,9 +483,10 @@ scans). Too short for t_err: they show that each method tracks real scans, not t
         if degeneration_path:
             sections.append(f"""## The degeneration degree (the paper's Fig. 8)
 
-mu from the skeleton's range-image normals (the filter), beta0 set from it, and mu from the same
-weighted normals of every non-ground point found by a 1 m KD-tree radius search (PCL), on every
-10th scan. Median time per scan: range image {timing['image_ms']:.1f} ms (Euclidean clustering,
+mu of each scan from the skeleton's range-image normals (the filter), beta0 set from mu smoothed
+over the scans shown (`ambient_filter.mu_smoothing`), and mu from the same weighted normals of
+every non-ground point found by a 1 m KD-tree radius search (PCL), on every 10th scan. Median
+time per scan: range image {timing['image_ms']:.1f} ms (Euclidean clustering,
 skeleton, normals, mu), KD-tree {timing['kdtree_ms']:.0f} ms; mean |difference| of the two mu
 {timing['agreement']:.2f}.
 
