@@ -55,7 +55,11 @@ void StageTotals::clear() {
 }
 
 void StageSummary::add(const StageTimes& times, double now_s) {
-  if (!start_s_) start_s_ = now_s;
+  if (!start_s_) {
+    start_s_ = now_s;
+    started_at_frame_ = true;
+  }
+  last_frame_s_ = now_s;
   totals_.add(times);
 }
 
@@ -66,20 +70,28 @@ StageSummary::~StageSummary() {
 
 std::optional<std::string> StageSummary::report(double now_s) {
   if (!start_s_ || totals_.frames() == 0 || now_s - *start_s_ < period_s_) return std::nullopt;
-  return line(now_s);
+  return line(totals_.frames() / std::max(now_s - *start_s_, 1e-9), now_s);
 }
 
 std::optional<std::string> StageSummary::report_remaining(double now_s) {
   if (!start_s_ || totals_.frames() == 0) return std::nullopt;
-  return line(now_s);
+  // A period that began with a frame holds one interval fewer than frames.
+  const int intervals = totals_.frames() - (started_at_frame_ ? 1 : 0);
+  const double span_s = last_frame_s_ - *start_s_;
+  std::optional<double> rate;
+  if (intervals > 0 && span_s > 0.0) rate = intervals / span_s;
+  return line(rate, now_s);
 }
 
-std::string StageSummary::line(double now_s) {
+std::string StageSummary::line(std::optional<double> frames_per_second, double now_s) {
   const int frames = totals_.frames();
   char number[64];
-  std::snprintf(number, sizeof(number), "%.1f", frames / std::max(now_s - *start_s_, 1e-9));
-  std::string line = label_ + ": " + number + " frames/s over " + std::to_string(frames) +
-                     " frames; ms per frame:";
+  std::string line = label_ + ": ";
+  if (frames_per_second) {
+    std::snprintf(number, sizeof(number), "%.1f", *frames_per_second);
+    line += std::string(number) + " frames/s over ";
+  }
+  line += std::to_string(frames) + " frames; ms per frame:";
   for (const auto& [stage, ms] : totals_.totals_ms()) {
     std::snprintf(number, sizeof(number), " %.1f", ms / frames);
     line += " " + stage + number + ",";
@@ -87,6 +99,7 @@ std::string StageSummary::line(double now_s) {
   std::snprintf(number, sizeof(number), " %.1f", totals_.all_ms() / frames);
   line += std::string(" total") + number;
   start_s_ = now_s;
+  started_at_frame_ = false;
   totals_.clear();
   return line;
 }

@@ -55,10 +55,37 @@ TEST(StageSummary, AShortRunStillGetsItsLine) {
   for (int frame = 0; frame < 5; ++frame)
     summary.add(times, 0.1 * frame);
   EXPECT_FALSE(summary.report(0.5)) << "the period has not passed";
-  const auto line = summary.report_remaining(0.5);
+  // Shut down 30 s after the bag's last scan: the rate is the one the scans came in at.
+  const auto line = summary.report_remaining(30.4);
   ASSERT_TRUE(line);
-  EXPECT_NE(line->find("over 5 frames"), std::string::npos) << *line;
-  EXPECT_FALSE(summary.report_remaining(0.6)) << "reported once";
+  EXPECT_EQ(*line,
+            "map_optimization: 10.0 frames/s over 5 frames; ms per frame: mapping 4.0, "
+            "total 4.0");
+  EXPECT_FALSE(summary.report_remaining(30.5)) << "reported once";
+}
+
+TEST(StageSummary, TheRestAfterAReportCountsFromTheReport) {
+  StageSummary summary("image_projection", 10.0);
+  StageTimes times;
+  times.add("projection", 3.0);
+  summary.add(times, 0.0);
+  summary.add(times, 5.0);
+  ASSERT_TRUE(summary.report(10.0));
+  summary.add(times, 10.5);
+  summary.add(times, 11.0);
+  const auto line = summary.report_remaining(60.0);
+  ASSERT_TRUE(line);
+  EXPECT_NE(line->find(": 2.0 frames/s over 2 frames"), std::string::npos) << *line;
+}
+
+TEST(StageSummary, OneFrameAloneHasNoRate) {
+  StageSummary summary("transform_fusion", 10.0);
+  StageTimes times;
+  times.add("fusion", 0.2);
+  summary.add(times, 3.0);
+  const auto line = summary.report_remaining(9.0);
+  ASSERT_TRUE(line);
+  EXPECT_EQ(*line, "transform_fusion: 1 frames; ms per frame: fusion 0.2, total 0.2");
 }
 
 TEST(StageSummary, FormatsOneFrame) {

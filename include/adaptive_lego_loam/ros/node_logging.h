@@ -80,15 +80,19 @@ class StageSummary {
   // total 7.9", and a new period starts. Nothing otherwise.
   std::optional<std::string> report() { return report(steady_seconds()); }
   std::optional<std::string> report(double now_s);
-  // The same line for the frames since the last report, however short the period.
+  // The same line for the frames since the last report, however short the period, with the rate
+  // over the time the frames came in (at shutdown, the idle time after the last frame is not
+  // the node's rate); without a rate when one frame is all there is to go by.
   std::optional<std::string> report_remaining() { return report_remaining(steady_seconds()); }
   std::optional<std::string> report_remaining(double now_s);
 
  private:
-  std::string line(double now_s);
+  std::string line(std::optional<double> frames_per_second, double now_s);
   std::string label_;
   double period_s_;
-  std::optional<double> start_s_;
+  std::optional<double> start_s_;  // the period's start: its first frame, or the last report
+  bool started_at_frame_ = false;
+  double last_frame_s_ = 0.0;
   StageTotals totals_;
 };
 
