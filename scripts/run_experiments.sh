@@ -8,6 +8,7 @@
 #     --data    the folder with kitti_odometry/ (poses/, times/, seq07_frames0-4/, first10/) and
 #               clustering_bench/; default $ALEGO_DATA
 # Raw outputs go to results/experiments/ (git-ignored; kept between runs: delete it to start over).
+# The full run's simulated scans take 16 GB there.
 set -euo pipefail
 
 quick=()
@@ -25,7 +26,7 @@ while (($#)); do
       shift
       ;;
     -h | --help)
-      sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'
+      sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *)
