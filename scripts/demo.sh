@@ -15,7 +15,7 @@ for argument in "$@"; do
   case "$argument" in
     --rviz) with_rviz=1 ;;
     -h | --help)
-      sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'
+      sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"
       exit 0
       ;;
     *)
