@@ -19,7 +19,8 @@ FeatureAssociationNode::FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHan
       warn_("feature_association", private_nh.param("warning_period", 5.0)),
       summary_("feature_association", private_nh.param("summary_period", 10.0)),
       diagnostics_(nh, private_nh, "feature_association", config.sensor.name,
-                   config.sensor.scan_period) {
+                   config.sensor.scan_period,
+                   [this](ros_bridge::HealthStatus& status) { add_diagnostics(status); }) {
   const int queue = private_nh.param("queue_size", 5);
   corner_pub_ = nh.advertise<sensor_msgs::PointCloud2>("laser_cloud_corner_last", queue);
   surface_pub_ = nh.advertise<sensor_msgs::PointCloud2>("laser_cloud_surf_last", queue);
@@ -92,6 +93,12 @@ void FeatureAssociationNode::process(const ros_bridge::StampMatcher::Group& grou
     drop("bad cloud", e.what());
     return;
   }
+  if (out_.odometry.rejected) {
+    ++rejected_motions_;
+    warn_(
+        "implausible scan-to-scan motion (odometry.max_speed, max_turn_rate_deg): the "
+        "predicted motion kept");
+  }
   std_msgs::Header header = cloud->header;
   if (header.frame_id.empty()) header.frame_id = frames_.sensor;
   publish(header);
@@ -100,6 +107,15 @@ void FeatureAssociationNode::process(const ros_bridge::StampMatcher::Group& grou
   diagnostics_.processed(out_.times);
   summary_.add(out_.times);
   if (const auto line = summary_.report()) ROS_INFO("%s", line->c_str());
+}
+
+void FeatureAssociationNode::add_diagnostics(ros_bridge::HealthStatus& status) {
+  const long rejected = rejected_motions_;
+  status.add("odometry motions rejected (total)", std::to_string(rejected));
+  if (rejected > rejected_motions_reported_) {
+    status.raise(ros_bridge::HealthLevel::kWarn, "implausible odometry motions rejected");
+  }
+  rejected_motions_reported_ = rejected;
 }
 
 void FeatureAssociationNode::drop(const std::string& reason, const std::string& detail) {

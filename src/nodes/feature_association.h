@@ -6,6 +6,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 
+#include <atomic>
 #include <optional>
 
 #include "adaptive_lego_loam/core/odometry/lidar_odometry.h"
@@ -37,6 +38,7 @@ class FeatureAssociationNode {
   void reset();
   ros_bridge::SegmentedCloudTopics topics() const;
   void publish(const std_msgs::Header& header);
+  void add_diagnostics(ros_bridge::HealthStatus& status);
 
   Config config_;
   LidarOdometry odometry_;
@@ -45,6 +47,10 @@ class FeatureAssociationNode {
   ros_bridge::FrameNames frames_;
   ros_bridge::ScanPairing pairing_;
   long pairing_dropped_ = 0;  // of pairing_.dropped() already counted
+  // Implausible registrations whose prediction was kept (OdometryResult::rejected); the
+  // diagnostics timer reads it.
+  std::atomic<long> rejected_motions_{0};
+  long rejected_motions_reported_ = 0;
   std::optional<ros::Time> last_mapped_stamp_;
   ros_bridge::ThrottledWarning warn_;
   ros_bridge::StageSummary summary_;

@@ -284,6 +284,7 @@ int run(const Options& options) {
   ProgressBar progress("run_sequence", total);
   Stopwatch wall(Clock::kWall);
   int frames = 0, empty_scans = 0, motion_gated_scans = 0, skipped_scans = 0;
+  int odometry_rejected_motions = 0;
   ScanStamps stamps(config.sensor.scan_period);
   LocalizationCounts localization;
   std::optional<double> last_stamp;
@@ -306,6 +307,7 @@ int run(const Options& options) {
       return_free_memory_to_system();
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
+      odometry_rejected_motions += result.odometry.rejected;
       localization.add(result.localization);
       outputs.add(result, pipeline->filter_result());
       outputs.add_loop(result.frame, result.loop, result.loop_closed, pipeline->keyframes());
@@ -380,6 +382,7 @@ int run(const Options& options) {
   }
   if (!options.save_map.empty()) summary["saved_map"] = options.save_map;
   summary["motion_gated_scans"] = motion_gated_scans;
+  summary["odometry_rejected_motions"] = odometry_rejected_motions;
   summary["wall_time_s"] = wall_s;
   summary["frames_per_second"] = wall_s > 0 ? frames / wall_s : 0.0;
   summary["stage_clock"] = options.cpu_time ? "thread CPU" : "wall";

@@ -1,5 +1,7 @@
 #include "adaptive_lego_loam/core/odometry/lidar_odometry.h"
 
+#include <cmath>
+
 #include "adaptive_lego_loam/core/odometry/deskew.h"
 
 namespace adaptive_lego_loam {
@@ -34,6 +36,10 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
   const bool first_pair = scans_ == 1 && params_.start_search_max_speed > 0.0;
   out.odometry = first_pair ? registration_.register_scan(out.features, start_guesses())
                             : registration_.register_scan(out.features, prediction);
+  if (!plausible_motion(out.odometry.motion, params_, sensor_.scan_period)) {
+    out.odometry.motion = prediction;
+    out.odometry.rejected = true;
+  }
   last_motion_ = out.odometry.motion;
   pose_ = pose_ * out.odometry.motion;
   out.pose = pose_;
@@ -51,6 +57,15 @@ std::vector<Eigen::Isometry3d> LidarOdometry::start_guesses() const {
     guesses.push_back(guess);
   }
   return guesses;
+}
+
+bool plausible_motion(const Eigen::Isometry3d& motion, const OdometryParams& odometry,
+                      double scan_period) {
+  if (!motion.matrix().allFinite()) return false;
+  const double distance = motion.translation().norm();
+  const double turn_deg = Eigen::AngleAxisd(motion.linear()).angle() * 180.0 / M_PI;
+  if (odometry.max_speed > 0.0 && distance > odometry.max_speed * scan_period) return false;
+  return odometry.max_turn_rate_deg <= 0.0 || turn_deg <= odometry.max_turn_rate_deg * scan_period;
 }
 
 bool uses_mapped_motion(const OdometryParams& odometry, const MappingParams& mapping) {

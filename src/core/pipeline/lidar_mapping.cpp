@@ -246,6 +246,10 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   // estimate; scan-to-map then starts from the previous velocity instead.
   out.motion_gated = gate_motion(motion);
   Eigen::Isometry3d pose = pose_ * (out.motion_gated ? *last_mapped_motion_ : motion);
+  // Without a solve after it (mapping off, or no map yet), a gated scan's pose comes from a
+  // velocity taken from the pose itself by an inverse that assumes a rotation: the rounding would
+  // grow scan after scan.
+  pose.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
   const Eigen::Isometry3d previous_pose = pose_;
   out.match = MapMatchResult();
   out.match.pose = pose;

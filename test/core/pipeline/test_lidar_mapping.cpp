@@ -159,3 +159,31 @@ TEST(MotionGate, SmoothAccelerationPassesTheGate) {
     EXPECT_NEAR(out.pose.translation().x(), x, 0.05) << "scan " << scan;
   }
 }
+
+// Without a solve to re-orthonormalise it (mapping off), a gated scan composes the pose with the
+// velocity taken from the pose itself: its rounding must not grow scan after scan until the
+// rotation is no rotation and the positions run off to infinity.
+TEST(MotionGate, AStreakOfGatedScansKeepsThePoseARotation) {
+  Config config = gated_config(0.3, 0);
+  config.mapping.enabled = false;
+  LidarMapping mapping(config);
+  MappingOutput out;
+  Eigen::Isometry3d turn = along_x(kSpeed);
+  turn.linear() = (Eigen::AngleAxisd(0.03, Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  Eigen::Isometry3d odometry = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d kept_turning = Eigen::Isometry3d::Identity();
+  const int driving = 6, standing = 300;  // the odometry stops: every scan after is gated
+  for (int scan = 0; scan < driving + standing; ++scan) {
+    if (scan > 0 && scan < driving) odometry = odometry * turn;
+    if (scan > 0) kept_turning = kept_turning * turn;
+    mapping.process(highway_features(0.0), odometry, 0.1 * scan, std::nullopt, out);
+    if (scan >= driving) ASSERT_TRUE(out.motion_gated) << "scan " << scan;
+  }
+  const Eigen::Matrix3d rotation = out.pose.linear();
+  EXPECT_LT((rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm(), 1e-9);
+  // The gate kept the last velocity all along.
+  EXPECT_LT((out.pose.translation() - kept_turning.translation()).norm(), 1e-6);
+  EXPECT_LT((rotation - kept_turning.linear()).norm(), 1e-9);
+}

@@ -79,6 +79,27 @@ TEST(Pipeline, SameInputGivesIdenticalPoses) {
   }
 }
 
+// KITTI 07 starts at about 0.9 m/s (0.09 m a scan). With the odometry's speed bound below that,
+// each registered motion is rejected as a registration that ran away: the prediction (standing
+// still) is kept and each rejection is reported; with the bound above it, none is.
+TEST(Pipeline, AnOdometryMotionFasterThanMaxSpeedIsRejectedAndThePredictionKept) {
+  Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  config.mapping.enabled = false;  // the odometry alone, as mapping would correct it
+  for (double max_speed : {0.5, 2.0}) {
+    SCOPED_TRACE("max_speed " + std::to_string(max_speed));
+    config.odometry.max_speed = max_speed;
+    std::vector<FrameResult> frames;
+    const auto estimate = run(config, &frames);
+    const bool rejecting = max_speed < 0.9;
+    for (std::size_t i = 1; i < frames.size(); ++i) {
+      SCOPED_TRACE("frame " + std::to_string(i));
+      EXPECT_TRUE(frames[i].odometry.registered);
+      EXPECT_EQ(frames[i].odometry.rejected, rejecting);
+      EXPECT_EQ(estimate[i].translation().norm() < 1e-9, rejecting);
+    }
+  }
+}
+
 // Between real scans: an empty scan (a .bin of 0 bytes) and one of two million points (a driver
 // gone wrong, or a merge of many sweeps). The empty one gets a predicted pose and is counted; the
 // big one fills the range image, counts what it could not place, and is processed; the scans after

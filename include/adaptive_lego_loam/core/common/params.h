@@ -126,6 +126,11 @@ struct OdometryParams {
   double start_search_max_speed = 40.0;  // m/s
   double start_search_step = 0.5;        // m
   int start_search_min_inliers = 20;
+  // A registered motion that is not finite, faster than max_speed or turning faster than
+  // max_turn_rate_deg is a registration that ran away, not the vehicle: the scan keeps the
+  // predicted motion instead. 0: no bound.
+  double max_speed = 50.0;           // m/s
+  double max_turn_rate_deg = 360.0;  // deg/s
 };
 
 // Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).

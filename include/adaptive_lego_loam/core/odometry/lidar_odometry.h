@@ -50,6 +50,11 @@ class LidarOdometry {
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
 };
 
+// Whether `motion`, over one scan period, is finite and within the odometry's max_speed and
+// max_turn_rate_deg.
+bool plausible_motion(const Eigen::Isometry3d& motion, const OdometryParams& odometry,
+                      double scan_period);
+
 // Whether the odometry takes its motion model from mapping (LidarOdometry::use_mapped_motion).
 bool uses_mapped_motion(const OdometryParams& odometry, const MappingParams& mapping);
 

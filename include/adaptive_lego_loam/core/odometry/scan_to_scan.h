@@ -25,6 +25,9 @@ struct OdometryResult {
   // across it) within 0.1 m of their line or plane at the result.
   int inliers_across_x = 0;
   bool registered = false;  // false for the first scan or when too few matches were found
+  // The registration's motion was implausible (OdometryParams::max_speed, max_turn_rate_deg) and
+  // `motion` is the prediction instead.
+  bool rejected = false;
 };
 
 class ScanToScanOdometry {
