@@ -253,7 +253,6 @@ void read_odometry(SectionReader& in, OdometryParams& o) {
   in.boolean("motion_from_mapping", o.motion_from_mapping);
   in.number("start_search_max_speed", o.start_search_max_speed, 0.0, 100.0);
   in.number("start_search_step", o.start_search_step, 0.05, 10.0);
-  in.number("start_search_min_inliers", o.start_search_min_inliers, 0, 1000000);
   in.number("max_speed", o.max_speed, 0.0, 1000.0);
   in.number("max_turn_rate_deg", o.max_turn_rate_deg, 0.0, 36000.0);
   in.reject_unknown_keys();

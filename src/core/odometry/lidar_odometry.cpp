@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "adaptive_lego_loam/core/odometry/deskew.h"
+#include "adaptive_lego_loam/core/odometry/start_search.h"
 
 namespace adaptive_lego_loam {
 
@@ -33,9 +34,18 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
   const Eigen::Isometry3d prediction =
       params_.constant_velocity ? last_motion_ : Eigen::Isometry3d::Identity();
   // The first pair: no motion is known yet, and the sensor may already be moving fast.
-  const bool first_pair = scans_ == 1 && params_.start_search_max_speed > 0.0;
-  out.odometry = first_pair ? registration_.register_scan(out.features, start_guesses())
-                            : registration_.register_scan(out.features, prediction);
+  const bool start_search = params_.start_search_max_speed > 0.0;
+  if (scans_ == 1 && start_search) {
+    out.odometry = registration_.register_scan(
+        out.features,
+        start_motion(out.features, *start_points(points_, cloud.info.ground_flag, outliers_)));
+    previous_start_points_.reset();
+  } else {
+    out.odometry = registration_.register_scan(out.features, prediction);
+  }
+  if (scans_ == 0 && start_search) {
+    previous_start_points_ = start_points(points_, cloud.info.ground_flag, outliers_);
+  }
   if (!plausible_motion(out.odometry.motion, params_, sensor_.scan_period)) {
     out.odometry.motion = prediction;
     out.odometry.rejected = true;
@@ -48,15 +58,26 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
   out.times.add("odometry", watch.lap_ms());
 }
 
-std::vector<Eigen::Isometry3d> LidarOdometry::start_guesses() const {
-  std::vector<Eigen::Isometry3d> guesses;
-  const double reach = params_.start_search_max_speed * sensor_.scan_period;
-  for (double x = 0.0; x <= reach + 1e-9; x += params_.start_search_step) {
-    Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
-    guess.translation().x() = x;
-    guesses.push_back(guess);
+Eigen::Isometry3d LidarOdometry::start_motion(const FeatureSet& features,
+                                              const Cloud& current) const {
+  // Within the scans' spacing of points on a surface at tens of metres, and under the 2 m of
+  // the repeating posts' aliases.
+  constexpr float kOverlapRadius = 0.25f;  // m
+  const std::vector<Eigen::Isometry3d> guesses = start_guesses(params_, sensor_.scan_period);
+  const std::vector<OdometryResult> candidates = registration_.align_each(features, guesses);
+  PointKdTree previous;
+  if (previous_start_points_) previous.build(previous_start_points_);
+  Eigen::Isometry3d best = guesses.front();
+  double best_overlap = -1.0;
+  for (const OdometryResult& candidate : candidates) {
+    if (!candidate.registered) continue;
+    const double fit = overlap_area(previous, current, candidate.motion, kOverlapRadius);
+    if (fit > best_overlap) {
+      best_overlap = fit;
+      best = candidate.motion;
+    }
   }
-  return guesses;
+  return best;
 }
 
 bool plausible_motion(const Eigen::Isometry3d& motion, const OdometryParams& odometry,

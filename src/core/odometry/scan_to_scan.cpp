@@ -26,26 +26,6 @@ Eigen::Vector3f moved_point(const CloudPoint& p, const Eigen::Isometry3d& pose) 
   return (pose * position(p)).cast<float>();
 }
 
-// Inliers among the correspondences across the x axis. The ground and the walls and rails
-// along the road fit every guess along x alike, and outnumber the rest: counted too, their
-// small differences in fit (of roll, pitch, height) would outvote what tells guesses apart.
-int count_inliers_across_x(const Correspondences& matches, const Eigen::Isometry3d& pose) {
-  constexpr double kInlierDistance = 0.1;  // m
-  constexpr double kMinAngleToX = 30.0 * M_PI / 180.0;
-  const double min_normal_x = std::sin(kMinAngleToX);     // a plane's normal, from the y-z plane
-  const double max_direction_x = std::cos(kMinAngleToX);  // a line's direction, from x
-  int inliers = 0;
-  for (const LineMatch& m : matches.lines) {
-    if (std::abs(m.direction.x()) > max_direction_x) continue;
-    inliers += ((pose * m.point - m.through).cross(m.direction)).norm() < kInlierDistance;
-  }
-  for (const PlaneMatch& m : matches.planes) {
-    if (std::abs(m.normal.x()) < min_normal_x) continue;
-    inliers += std::abs(m.normal.dot(pose * m.point) + m.offset) < kInlierDistance;
-  }
-  return inliers;
-}
-
 }  // namespace
 
 ScanToScanOdometry::ScanToScanOdometry(const OdometryParams& params) : params_(params) {}
@@ -158,7 +138,6 @@ OdometryResult ScanToScanOdometry::align(const FeatureSet& current, const Eigen:
   result.plane_matches = static_cast<int>(matches.planes.size());
   result.registered = result.edge_matches + result.plane_matches >= 10;
   if (result.registered) result.motion = euler_vector_to_pose(pose);
-  result.inliers_across_x = count_inliers_across_x(matches, euler_vector_to_pose(pose));
   return result;
 }
 
@@ -171,38 +150,25 @@ void ScanToScanOdometry::keep(const FeatureSet& current) {
 
 OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
                                                  const Eigen::Isometry3d& guess) {
-  return register_scan(current, std::vector<Eigen::Isometry3d>{guess});
-}
-
-OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
-                                                 const std::vector<Eigen::Isometry3d>& guesses) {
   OdometryResult result;
-  result.motion = guesses.front();
+  result.motion = guess;
   if (previous_corners_ && previous_surfaces_) {
     // The first pair starts from no motion known, possibly far from the truth: more searches.
     const int iterations = first_pair_ ? 4 * params_.max_iterations : params_.max_iterations;
     first_pair_ = false;
-    if (guesses.size() == 1) {
-      result = align(current, guesses.front(), iterations);
-    } else {
-      // Each guess converges to its nearest fit; the one with the most features across x on
-      // their lines and planes is refined with the full searches. A repeating structure fits at
-      // every alias, so what does not repeat decides, if there is enough of it.
-      int best_inliers = -1;
-      Eigen::Isometry3d best = guesses.front();
-      for (const Eigen::Isometry3d& guess : guesses) {
-        const OdometryResult candidate = align(current, guess, params_.max_iterations);
-        if (candidate.registered && candidate.inliers_across_x > best_inliers) {
-          best_inliers = candidate.inliers_across_x;
-          best = candidate.motion;
-        }
-      }
-      if (best_inliers < params_.start_search_min_inliers) best = guesses.front();
-      result = align(current, best, iterations);
-    }
+    result = align(current, guess, iterations);
   }
   keep(current);
   return result;
+}
+
+std::vector<OdometryResult> ScanToScanOdometry::align_each(
+    const FeatureSet& current, const std::vector<Eigen::Isometry3d>& guesses) const {
+  std::vector<OdometryResult> results;
+  if (!previous_corners_ || !previous_surfaces_) return results;
+  for (const Eigen::Isometry3d& guess : guesses)
+    results.push_back(align(current, guess, params_.max_iterations));
+  return results;
 }
 
 }  // namespace adaptive_lego_loam

@@ -160,8 +160,7 @@ TEST(SimOdometry, AdaptiveThresholdFollowsTheHighwayWhereTheStrictOneStalls) {
 // A drive that starts at 23-26 m/s beside guard rails (KITTI 01's frames 120-199 on the simulated
 // green highway, planted verges as KITTI 01's): the first pair of scans has no motion to start
 // from. From a zero guess it settles on an alias of the posts (2 m apart) and lags for scans; the
-// start search finds the motion from the first scan. (On the bare highway, where the only
-// structure that does not repeat is traffic keeping pace with the sensor, no guess tells.)
+// start search finds the motion from the first scan.
 TEST(SimOdometry, AHighwayEnteredAtSpeedIsTrackedFromItsFirstScan) {
   const int first = 120, frames = 80;
   const std::string data = std::string(TEST_DATA_DIR) + "/kitti_poses/";
@@ -174,10 +173,9 @@ TEST(SimOdometry, AHighwayEnteredAtSpeedIsTrackedFromItsFirstScan) {
   for (int i = first; i < first + frames; ++i)
     request.trajectory_times.push_back(times[i] - times[first]);
   const std::vector<SimFrame> scans = simulate(request, frames);
-  auto run = [&](double start_search_max_speed, int start_search_min_inliers = 50) {
+  auto run = [&](double start_search_max_speed) {
     Config config = kitti_config();
     config.odometry.start_search_max_speed = start_search_max_speed;
-    config.odometry.start_search_min_inliers = start_search_min_inliers;
     const Drive result = drive(config, scans);
     const double first_step = ((result.truth[0].inverse() * result.truth[1]).inverse() *
                                (result.estimate[0].inverse() * result.estimate[1]))
@@ -196,8 +194,5 @@ TEST(SimOdometry, AHighwayEnteredAtSpeedIsTrackedFromItsFirstScan) {
   ASSERT_GE(searched, 0.0) << "the path must exceed 100 m";
   EXPECT_LT(searched, 1.0);
   EXPECT_LT(searched_first, 0.2);
-  // Asked for more evidence across x than the scans hold, the search keeps the zero guess.
-  const auto [unsure, unsure_first] = run(40.0, 1000000);
-  EXPECT_EQ(unsure, from_zero);
-  EXPECT_EQ(unsure_first, from_zero_first);
+  EXPECT_GT(from_zero_first, 1.0) << "the premise: from zero the start settles on an alias";
 }

@@ -119,13 +119,11 @@ struct OdometryParams {
   bool motion_from_mapping = true;
   // A start in motion (a bag, a node restarted at speed): the first pair of scans is registered
   // from guesses every start_search_step along the sensor's x axis up to start_search_max_speed,
-  // and the result that fits best is kept; from zero alone it would settle on the nearest alias
-  // of a repeating structure (guard-rail posts). 0: from zero alone. The best fit replaces the
-  // zero guess only with at least start_search_min_inliers correspondences across x: with fewer
-  // (a VLP-16 beside a highway has about ten) the guesses cannot be told apart.
+  // and the result that lays most non-ground points onto the first scan is kept
+  // (core/odometry/start_search.h); from zero alone it would settle on the nearest alias of a
+  // repeating structure (guard-rail posts). 0: from zero alone.
   double start_search_max_speed = 40.0;  // m/s
   double start_search_step = 0.5;        // m
-  int start_search_min_inliers = 20;
   // A registered motion that is not finite, faster than max_speed or turning faster than
   // max_turn_rate_deg is a registration that ran away, not the vehicle: the scan keeps the
   // predicted motion instead. 0: no bound.

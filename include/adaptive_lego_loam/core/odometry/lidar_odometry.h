@@ -43,9 +43,10 @@ class LidarOdometry {
   std::vector<float> fractions_;
   bool first_ = true;
   int scans_ = 0;  // processed so far
-  // Motions from the previous scan for the first pair: 0, step, 2 step, ... along x up to the
-  // farthest the sensor moves in a scan period at start_search_max_speed.
-  std::vector<Eigen::Isometry3d> start_guesses() const;
+  // The first pair's guess (core/odometry/start_search.h): of the registrations from each start
+  // guess, the one that lays most of `current`'s non-ground surface onto the first scan's.
+  Eigen::Isometry3d start_motion(const FeatureSet& features, const Cloud& current) const;
+  CloudPtr previous_start_points_;  // the first scan's non-ground points, until the second
   Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
 };

@@ -21,9 +21,6 @@ struct OdometryResult {
   int edge_matches = 0;
   int plane_matches = 0;
   int iterations = 0;
-  // Correspondences that constrain motion along the sensor's x axis (a plane facing it, a line
-  // across it) within 0.1 m of their line or plane at the result.
-  int inliers_across_x = 0;
   bool registered = false;  // false for the first scan or when too few matches were found
   // The registration's motion was implausible (OdometryParams::max_speed, max_turn_rate_deg) and
   // `motion` is the prediction instead.
@@ -36,11 +33,10 @@ class ScanToScanOdometry {
   // Registers `current` against the previous scan's features, starting from `guess` (the motion
   // from the previous scan to this one); then keeps `current` as the previous scan.
   OdometryResult register_scan(const FeatureSet& current, const Eigen::Isometry3d& guess);
-  // The same from each of `guesses` (motions along the sensor's x axis, the first one zero) in
-  // turn: the result with the most inliers across x is refined and kept, if it has
-  // start_search_min_inliers of them; else the registration from the first guess.
-  OdometryResult register_scan(const FeatureSet& current,
-                               const std::vector<Eigen::Isometry3d>& guesses);
+  // Registers `current` against the previous scan from each of `guesses` in turn, each with the
+  // usual searches; nothing is kept (empty before a previous scan exists).
+  std::vector<OdometryResult> align_each(const FeatureSet& current,
+                                         const std::vector<Eigen::Isometry3d>& guesses) const;
   void reset();
 
  private:
