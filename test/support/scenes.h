@@ -30,6 +30,18 @@ inline Scene corridor() {
   return with_ground({{{-60, 2.8, -1.73}, {60, 3.0, 3.0}}, {{-60, -3.0, -1.73}, {60, -2.8, 3.0}}});
 }
 
+// A road between rows of guard-rail posts every 2 m, 6 m to either side, from -half_length to
+// half_length along x: the same picture every 2 m.
+inline Scene post_rows(double half_length) {
+  Scene scene;
+  scene.has_ground = true;
+  for (double x = -half_length; x <= half_length; x += 2.0) {
+    for (double y : {-6.0, 6.0})
+      scene.boxes.push_back({{x, y, -2.0}, {x + 0.15, y + 0.15, -0.9}});
+  }
+  return scene;
+}
+
 // A square room, 12 m a side.
 inline Scene box_room() {
   return with_ground({{{5.8, -6, -1.73}, {6.0, 6, 3}},

@@ -2,6 +2,15 @@
 
 namespace adaptive_lego_loam {
 
+CloudPoint to_cloud_point(const ScanPoint& p, float intensity) {
+  CloudPoint q;
+  q.x = p.x;
+  q.y = p.y;
+  q.z = p.z;
+  q.intensity = intensity;
+  return q;
+}
+
 CloudPtr transform_cloud(const Cloud& in, const Eigen::Isometry3d& pose) {
   CloudPtr out(new Cloud);
   out->resize(in.size());

@@ -10,15 +10,6 @@ namespace {
 
 constexpr int kNeighbours = 5;  // on each side, for smoothness and blocking
 
-CloudPoint to_cloud_point(const ScanPoint& p, int row) {
-  CloudPoint q;
-  q.x = p.x;
-  q.y = p.y;
-  q.z = p.z;
-  q.intensity = static_cast<float>(row);
-  return q;
-}
-
 }  // namespace
 
 void FeatureSet::clear() {
@@ -108,8 +99,8 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
       }
       if (++edges > params_.less_sharp_per_sector) break;
       label_[i] = edges <= params_.sharp_per_sector ? 2 : 1;
-      if (label_[i] == 2) out.sharp->push_back(to_cloud_point(points[i], row));
-      out.less_sharp->push_back(to_cloud_point(points[i], row));
+      if (label_[i] == 2) out.sharp->push_back(to_cloud_point(points[i], static_cast<float>(row)));
+      out.less_sharp->push_back(to_cloud_point(points[i], static_cast<float>(row)));
       block_neighbours(cloud, i);
     }
 
@@ -120,12 +111,13 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
         continue;
       }
       label_[i] = -1;
-      out.flat->push_back(to_cloud_point(points[i], row));
+      out.flat->push_back(to_cloud_point(points[i], static_cast<float>(row)));
       block_neighbours(cloud, i);
       if (++flats >= params_.flat_per_sector) break;
     }
     for (int i = first; i <= last; ++i) {
-      if (label_[i] <= 0) row_less_flat_.push_back(to_cloud_point(points[i], row));
+      if (label_[i] <= 0)
+        row_less_flat_.push_back(to_cloud_point(points[i], static_cast<float>(row)));
     }
   }
   *out.less_flat += *voxel_filter_(row_less_flat_, params_.less_flat_voxel);
@@ -144,7 +136,7 @@ void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<Sc
   for (int row = 0; row < rows; ++row)
     pick_row(cloud, points, row, out);
   for (const ScanPoint& p : outliers)
-    out.outliers->push_back(to_cloud_point(p, -1));
+    out.outliers->push_back(to_cloud_point(p, -1.0f));
   less_flat_capacity_ = out.less_flat->size() + out.less_flat->size() / 8;
 }
 

@@ -17,19 +17,12 @@ CloudPtr start_points(const std::vector<ScanPoint>& points, const std::vector<ui
                       const std::vector<ScanPoint>& outliers) {
   CloudPtr cloud(new Cloud);
   cloud->reserve(points.size() + outliers.size());
-  auto add = [&cloud](const ScanPoint& p) {
-    CloudPoint q;
-    q.x = p.x;
-    q.y = p.y;
-    q.z = p.z;
-    q.intensity = 0.0f;
-    cloud->push_back(q);
-  };
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (i >= ground_flag.size() || !ground_flag[i]) add(points[i]);
+    if (i >= ground_flag.size() || !ground_flag[i])
+      cloud->push_back(to_cloud_point(points[i], 0.f));
   }
   for (const ScanPoint& p : outliers)
-    add(p);
+    cloud->push_back(to_cloud_point(p, 0.f));
   return cloud;
 }
 

@@ -8,7 +8,7 @@
 #include "adaptive_lego_loam/core/clustering/segmenter.h"
 #include "adaptive_lego_loam/core/odometry/feature_extraction.h"
 #include "adaptive_lego_loam/core/odometry/scan_to_scan.h"
-#include "support/synthetic.h"
+#include "support/scenes.h"
 
 using namespace adaptive_lego_loam;
 using test::Box;
@@ -114,12 +114,7 @@ namespace {
 // A road between rows of posts every 2 m, 6 m to either side, with a few objects that do not
 // repeat: a sign, a cabinet, a parked van.
 Scene post_rows() {
-  Scene scene;
-  scene.has_ground = true;
-  for (double x = -60.0; x <= 60.0; x += 2.0) {
-    for (double y : {-6.0, 6.0})
-      scene.boxes.push_back({{x, y, -2.0}, {x + 0.15, y + 0.15, -0.9}});
-  }
+  Scene scene = test::post_rows(60.0);
   scene.boxes.push_back({{14.0, 7.0, -2.0}, {14.2, 9.5, 1.5}});
   scene.boxes.push_back({{-9.0, -8.5, -2.0}, {-7.8, -7.6, -0.3}});
   scene.boxes.push_back({{24.0, -9.5, -2.0}, {29.0, -7.5, 0.6}});

@@ -19,12 +19,7 @@ constexpr double kAlias = 0.6;  // m: one post behind
 // Posts every 2 m 6 m to either side of the road, and a few things that do not repeat: a sign
 // gantry's leg, a cabinet, a parked van, a tree-like column.
 Scene roadside() {
-  Scene scene;
-  scene.has_ground = true;
-  for (double x = -80.0; x <= 80.0; x += 2.0) {
-    for (double y : {-6.0, 6.0})
-      scene.boxes.push_back({{x, y, -2.0}, {x + 0.15, y + 0.15, -0.9}});
-  }
+  Scene scene = test::post_rows(80.0);
   scene.boxes.push_back({{14.0, 9.0, -2.0}, {14.4, 9.4, 4.0}});
   scene.boxes.push_back({{-9.0, -8.5, -2.0}, {-7.8, -7.6, -0.3}});
   scene.boxes.push_back({{24.0, -11.5, -2.0}, {29.0, -9.5, 0.6}});
