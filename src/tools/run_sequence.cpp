@@ -69,9 +69,10 @@ class Outputs {
         degeneration_(path("degeneration.csv")),
         loops_(path("loops.csv")),
         localization_(path("localization.csv")) {
-    loops_.stream() << "frame,current_keyframe,matched_keyframe,current_frame,matched_frame,"
-                       "source,status,inlier_ratio,inlier_mse,fitness,relative_x,relative_y,"
-                       "relative_z,relative_yaw_deg,closed\n";
+    loops_.stream()
+        << "frame,current_keyframe,matched_keyframe,current_frame,matched_frame,"
+           "source,status,inlier_ratio,inlier_mse,fitness,refinement_m,relative_x,relative_y,"
+           "relative_z,relative_yaw_deg,closed\n";
     std::ofstream& timing = timing_.stream();
     timing << "frame";
     for (const auto& stage : kStages)
@@ -122,11 +123,11 @@ class Outputs {
                 << (loop->source == CandidateSource::kPlace ? "place" : "radius") << ","
                 << (loop->accepted() ? "verified" : to_string(loop->status)) << ","
                 << loop->inlier_ratio << "," << loop->inlier_mse << "," << loop->fitness << ","
-                << relative.translation().x() << "," << relative.translation().y() << ","
-                << relative.translation().z() << ","
+                << loop->refinement_m << "," << relative.translation().x() << ","
+                << relative.translation().y() << "," << relative.translation().z() << ","
                 << std::atan2(relative(1, 0), relative(0, 0)) * 180.0 / M_PI;
     } else {
-      loops_out << ",,,,,,,,,,,,,";
+      loops_out << ",,,,,,,,,,,,,,";
     }
     loops_out << "," << int(closed) << "\n";
   }

@@ -337,6 +337,7 @@ void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
   in.number("icp_max_correspondence_distance", l.icp_max_correspondence_distance, 0.01, 1000.0);
   in.number("icp_max_iterations", l.icp_max_iterations, 1, 10000);
   in.number("icp_max_points", l.icp_max_points, 3, 10000000);
+  in.boolean("refine", l.refine);
   in.number("map_points_per_scan", l.map_points_per_scan, 1, 100000000);
   in.number("icp_iterations_per_scan", l.icp_iterations_per_scan, 1, 10000);
   in.number("graph_iterations_per_scan", l.graph_iterations_per_scan, 1, 10000);

@@ -9,6 +9,8 @@
 
 #include "adaptive_lego_loam/core/common/timing.h"
 #include "adaptive_lego_loam/core/loop_closure/stepped_icp.h"
+#include "adaptive_lego_loam/core/mapping/local_map.h"
+#include "adaptive_lego_loam/core/mapping/scan_to_map.h"
 #include "adaptive_lego_loam/core/spatial/voxel_filter.h"
 
 namespace adaptive_lego_loam {
@@ -73,14 +75,22 @@ std::vector<Keyframe> neighbourhood(const std::vector<Keyframe>& keyframes, int 
 // Every n-th point of `cloud`, at most `most` of them. ICP's time grows with its source; a
 // uniform sample keeps the fitness (a mean over the source) comparable, where a voxel filter's
 // centroids would raise it.
-CloudPtr sample(const CloudPtr& cloud, int most) {
-  const std::size_t step = (cloud->size() + most - 1) / most;
-  if (step <= 1) return cloud;
-  CloudPtr sampled(new Cloud);
-  sampled->reserve(cloud->size() / step + 1);
-  for (std::size_t i = 0; i < cloud->size(); i += step)
-    sampled->push_back((*cloud)[i]);
+std::size_t sample_step(std::size_t size, int most) {
+  return std::max<std::size_t>((size + most - 1) / most, 1);
+}
+
+Cloud every_nth(const Cloud& cloud, std::size_t step) {
+  Cloud sampled;
+  sampled.reserve(cloud.size() / step + 1);
+  for (std::size_t i = 0; i < cloud.size(); i += step)
+    sampled.push_back(cloud[i]);
   return sampled;
+}
+
+CloudPtr sample(const CloudPtr& cloud, int most) {
+  const std::size_t step = sample_step(cloud->size(), most);
+  if (step == 1) return cloud;
+  return CloudPtr(new Cloud(every_nth(*cloud, step)));
 }
 
 Eigen::Isometry3d isometry_of(const Eigen::Matrix4f& transformation) {
@@ -163,7 +173,7 @@ std::optional<LoopCandidate> radius_candidate(const std::vector<Keyframe>& keyfr
 }
 
 struct LoopDetectionJob::Work {
-  enum class Phase { kMap, kFilter, kTree, kIcp };
+  enum class Phase { kMap, kFilter, kTree, kIcp, kRefinementMap, kRefine };
   Phase phase = Phase::kMap;
   std::vector<Keyframe> map_keyframes;  // the candidate's neighbourhood, as when the job began
   std::size_t mapped = 0;               // how many of them are in the map
@@ -172,12 +182,17 @@ struct LoopDetectionJob::Work {
   CloudPtr source;
   Eigen::Isometry3d current_pose, guess, matched_pose;
   std::unique_ptr<SteppedIcp> icp;
+  // Refining: the current keyframe, the candidate's map as mapping's, where ICP put the keyframe.
+  Keyframe current;
+  std::optional<LocalMap> refinement_map;
+  Eigen::Isometry3d icp_pose;
 };
 
 LoopDetectionJob::LoopDetectionJob(const std::vector<Keyframe>& keyframes, int current_index,
                                    const std::optional<LoopCandidate>& candidate,
-                                   const LoopClosureParams& params)
-    : params_(params) {
+                                   const LoopClosureParams& params,
+                                   const std::optional<MappingParams>& refinement)
+    : params_(params), refinement_(refinement) {
   if (current_index < 0 || current_index >= static_cast<int>(keyframes.size())) {
     throw std::out_of_range("detect_loop: keyframe " + std::to_string(current_index) + " of " +
                             std::to_string(keyframes.size()));
@@ -198,6 +213,7 @@ LoopDetectionJob::LoopDetectionJob(const std::vector<Keyframe>& keyframes, int c
     work_->source = sample(verification_source(keyframes[current_index], candidate->guess, params),
                            params.icp_max_points);
     work_->current_pose = keyframes[current_index].pose;
+    work_->current = keyframes[current_index];
     work_->guess = candidate->guess;
     work_->matched_pose = keyframes.at(detection_.matched_index).pose;
     if (work_->source->size() < kMinIcpPoints) finish(LoopStatus::kTooFewPoints);
@@ -230,6 +246,12 @@ bool LoopDetectionJob::step() {
       break;
     case Work::Phase::kIcp:
       iterate_icp();
+      break;
+    case Work::Phase::kRefinementMap:
+      add_to_refinement_map();
+      break;
+    case Work::Phase::kRefine:
+      refine();
       break;
   }
   detection_.time_ms += stopwatch.elapsed_ms();
@@ -268,7 +290,7 @@ void LoopDetectionJob::filter_map() {
     work_->map = work_->map_sums->centroids();
     work_->map_sums.reset();
   }
-  work_->map_keyframes.clear();
+  if (!refinement_) work_->map_keyframes.clear();
   if (work_->map->size() < kMinIcpPoints) {
     finish(LoopStatus::kTooFewPoints);
     return;
@@ -313,6 +335,55 @@ void LoopDetectionJob::conclude(SteppedIcp& icp) {
     finish(LoopStatus::kTooFewInliers);
     return;
   }
+  if (!refinement_) {
+    accept(corrected);
+    return;
+  }
+  Work& work = *work_;
+  work.icp_pose = corrected;
+  work.mapped = 0;
+  work.refinement_map.emplace(*refinement_);
+  work.phase = Work::Phase::kRefinementMap;
+}
+
+// Places the candidate's keyframes into the refinement's map until map_points_per_scan points
+// went in.
+void LoopDetectionJob::add_to_refinement_map() {
+  Work& work = *work_;
+  work.icp.reset();
+  work.map.reset();
+  std::size_t points = 0;
+  while (work.mapped < work.map_keyframes.size() &&
+         points < static_cast<std::size_t>(params_.map_points_per_scan)) {
+    const Keyframe& keyframe = work.map_keyframes[work.mapped++];
+    if (!keyframe.has_clouds()) continue;  // merged into a neighbour
+    work.refinement_map->add(keyframe);
+    points += points_of(keyframe);
+  }
+  if (work.mapped == work.map_keyframes.size()) work.phase = Work::Phase::kRefine;
+}
+
+// The current keyframe's corners and surfaces, every n-th, at most icp_max_points in all, matched
+// from ICP's pose. All of them, not only those ICP aligned: the match leaves out points without
+// a line or plane of the map near them, and what is farther adds to the constraints.
+void LoopDetectionJob::refine() {
+  Work& work = *work_;
+  const CloudPtr corners = work.current.corners->unpack();
+  const CloudPtr surfaces = work.current.surfaces->unpack();
+  const std::size_t step = sample_step(corners->size() + surfaces->size(), params_.icp_max_points);
+  const MapMatchResult match = ScanToMapMatcher(*refinement_)
+                                   .match(every_nth(*corners, step), every_nth(*surfaces, step),
+                                          *work.refinement_map, work.icp_pose);
+  if (!match.matched) {
+    accept(work.icp_pose);
+    return;
+  }
+  detection_.refinement_m = (match.pose.translation() - work.icp_pose.translation()).norm();
+  accept(match.pose);
+}
+
+void LoopDetectionJob::accept(const Eigen::Isometry3d& corrected) {
+  detection_.correction = corrected * work_->current_pose.inverse();
   detection_.relative_pose = work_->matched_pose.inverse() * corrected;
   finish(LoopStatus::kAccepted);
 }
@@ -324,11 +395,12 @@ void LoopDetectionJob::finish(LoopStatus status) {
 
 LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
                           const std::optional<LoopCandidate>& candidate,
-                          const LoopClosureParams& params) {
+                          const LoopClosureParams& params,
+                          const std::optional<MappingParams>& refinement) {
   LoopClosureParams unbounded = params;
   unbounded.map_points_per_scan = std::numeric_limits<int>::max();
   unbounded.icp_iterations_per_scan = std::numeric_limits<int>::max();
-  LoopDetectionJob job(keyframes, current_index, candidate, unbounded);
+  LoopDetectionJob job(keyframes, current_index, candidate, unbounded, refinement);
   while (!job.step()) {
   }
   return job.detection();

@@ -86,7 +86,8 @@ void LidarMapping::start_loop_closure(double stamp) {
   last_loop_attempt_ = stamp;
   ++(candidate->source == CandidateSource::kPlace ? counts_.place_candidates
                                                   : counts_.radius_candidates);
-  loop_job_.emplace(keyframes_, newest, candidate, loop_params_);
+  loop_job_.emplace(keyframes_, newest, candidate, loop_params_,
+                    loop_params_.refine ? std::optional<MappingParams>(params_) : std::nullopt);
 }
 
 std::optional<LoopDetection> LidarMapping::advance_loop_closure(double stamp, bool new_keyframe) {

@@ -102,6 +102,16 @@ LoopDetection pcl_one_shot(const std::vector<Keyframe>& keyframes, int current, 
   return loop;
 }
 
+// The square drive whose last keyframe sees a different street: other boxes, same ground.
+OffsetCase mismatched_case() {
+  OffsetCase scene_case;
+  const std::vector<Keyframe> elsewhere =
+      keyframes_along(scene_case.truth, scene_case.estimates, 99);
+  scene_case.keyframes[39].corners = elsewhere[39].corners;
+  scene_case.keyframes[39].surfaces = elsewhere[39].surfaces;
+  return scene_case;
+}
+
 }  // namespace
 
 TEST(LoopClosure, CandidateIsNearestOldEnoughKeyframe) {
@@ -163,14 +173,53 @@ TEST(LoopClosure, IcpRecoversOffsetOfLastKeyframe) {
             params.loop_sigma_translation);
 }
 
+// Refined on the planes of the candidate's map, the same loop is off by a fraction of ICP's
+// error (ICP's bias above); the verification (inliers, fitness) stays ICP's.
+TEST(LoopClosure, RefinementOnPlanesRemovesIcpsBias) {
+  const OffsetCase scene_case;
+  const LoopClosureParams params;
+  const Eigen::Isometry3d true_relative = scene_case.truth[0].inverse() * scene_case.truth[39];
+  const auto error_m = [&](const LoopDetection& loop) {
+    return (true_relative.inverse() * loop.relative_pose).translation().norm();
+  };
+  const auto error_deg = [&](const LoopDetection& loop) {
+    return rotation_deg(true_relative.inverse() * loop.relative_pose);
+  };
+  const std::optional<LoopCandidate> candidate = radius_candidate(scene_case.keyframes, 39, params);
+  const LoopDetection icp = detect_loop(scene_case.keyframes, 39, candidate, params);
+  const LoopDetection refined =
+      detect_loop(scene_case.keyframes, 39, candidate, params, MappingParams());
+  ASSERT_TRUE(icp.accepted());
+  ASSERT_TRUE(refined.accepted());
+  std::printf(
+      "[ measured ] relative pose off by %.4f m, %.3f deg after ICP; %.4f m, %.3f deg refined "
+      "(moved %.3f m), %.1f ms in all\n",
+      error_m(icp), error_deg(icp), error_m(refined), error_deg(refined), refined.refinement_m,
+      refined.time_ms);
+  EXPECT_GT(error_m(icp), 0.05) << "the scene no longer shows ICP's bias";
+  EXPECT_LT(error_m(refined), 0.03);
+  EXPECT_LT(error_deg(refined), 0.15);
+  EXPECT_GT(refined.refinement_m, 0.03);
+  EXPECT_EQ(icp.refinement_m, 0.0);
+  EXPECT_TRUE(same_bits(refined.fitness, icp.fitness));
+  EXPECT_TRUE(same_bits(refined.inlier_ratio, icp.inlier_ratio));
+  const Eigen::Isometry3d corrected = refined.correction * scene_case.estimates[39];
+  EXPECT_LT((corrected.translation() - scene_case.truth[39].translation()).norm(), 0.03);
+}
+
+// A loop ICP rejects is not refined: nothing to refine, and no map built for it.
+TEST(LoopClosure, ARejectedLoopIsNotRefined) {
+  const OffsetCase scene_case = mismatched_case();
+  const LoopClosureParams params;
+  const LoopDetection loop =
+      detect_loop(scene_case.keyframes, 39, radius_candidate(scene_case.keyframes, 39, params),
+                  params, MappingParams());
+  EXPECT_EQ(loop.status, LoopStatus::kTooFewInliers);
+  EXPECT_EQ(loop.refinement_m, 0.0);
+}
+
 TEST(LoopClosure, MismatchedCloudIsRejectedForTooFewInliers) {
-  OffsetCase scene_case;
-  // The last keyframe sees a different street: other boxes, same ground.
-  const std::vector<Keyframe> elsewhere =
-      keyframes_along(scene_case.truth, scene_case.estimates, 99);
-  Keyframe& last = scene_case.keyframes[39];
-  last.corners = elsewhere[39].corners;
-  last.surfaces = elsewhere[39].surfaces;
+  const OffsetCase scene_case = mismatched_case();
   const LoopClosureParams params;
   const LoopDetection loop = detect_loop(scene_case.keyframes, 39, params);
   std::printf("[ measured ] mismatched cloud: %s, %.0f %% inliers, their mse %.3f m^2\n",
@@ -198,12 +247,8 @@ TEST(LoopClosure, EmptyCloudsAndDisabled) {
 // PointKdTree: PCL's ICP in one align() on its own KD-tree gives the same fitness and
 // transformation, bit for bit (the accepted loop and the mismatched cloud).
 TEST(LoopClosure, SteppedIcpEqualsPclIcpInOneAlign) {
-  OffsetCase matching;
-  OffsetCase mismatched;
-  const std::vector<Keyframe> elsewhere =
-      keyframes_along(mismatched.truth, mismatched.estimates, 99);
-  mismatched.keyframes[39].corners = elsewhere[39].corners;
-  mismatched.keyframes[39].surfaces = elsewhere[39].surfaces;
+  const OffsetCase matching;
+  const OffsetCase mismatched = mismatched_case();
   const LoopClosureParams params;
   for (const OffsetCase* scene_case : {&matching, &mismatched}) {
     const LoopDetection loop = detect_loop(scene_case->keyframes, 39, params);
@@ -243,6 +288,27 @@ TEST(LoopClosure, JobInStepsGivesTheOneShotDetection) {
         << iterations_per_step << " ICP iterations a step";
     EXPECT_GT(job.detection().time_ms, 0.0);
   }
+}
+
+// With the refinement, too: its map a keyframe a step at map_points_per_scan 1, then the match.
+TEST(LoopClosure, RefiningJobInStepsGivesTheOneShotDetection) {
+  const OffsetCase scene_case;
+  const LoopClosureParams params;
+  const std::optional<LoopCandidate> candidate = radius_candidate(scene_case.keyframes, 39, params);
+  const LoopDetection one_shot =
+      detect_loop(scene_case.keyframes, 39, candidate, params, MappingParams());
+  ASSERT_TRUE(one_shot.accepted());
+  LoopClosureParams stepped = params;
+  stepped.map_points_per_scan = 1;
+  stepped.icp_iterations_per_scan = 1;
+  LoopDetectionJob job(scene_case.keyframes, 39, candidate, stepped, MappingParams());
+  int steps = 1;
+  while (!job.step())
+    ++steps;
+  expect_same_detection(job.detection(), one_shot);
+  EXPECT_TRUE(same_bits(job.detection().refinement_m, one_shot.refinement_m));
+  const int map_keyframes = 10;
+  EXPECT_EQ(steps, map_keyframes + 2 + one_shot.icp_iterations + 1 + map_keyframes + 1);
 }
 
 TEST(LoopClosure, JobWithoutCandidateOrPointsIsDoneAtOnce) {

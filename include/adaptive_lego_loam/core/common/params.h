@@ -240,6 +240,11 @@ struct LoopClosureParams {
   int icp_max_iterations = 30;
   // ICP aligns every n-th point of the newest keyframe, at most this many: bounds its time.
   int icp_max_points = 2000;
+  // A verified loop's pose refined as mapping places a scan: the keyframe's edges and surfaces
+  // (every n-th, at most icp_max_points) matched to lines and planes of the candidate's map.
+  // Point-to-point ICP stops centimetres to decimetres off where the keyframe sees what the map
+  // does not, and where it matches sparse rings point to point.
+  bool refine = true;
   // A loop closure is spread over the scans from its keyframe on, so that no scan pays for all of
   // it; each scan does the next of these pieces (or the voxel filter, or the KD-tree). The
   // detection does not depend on their size.

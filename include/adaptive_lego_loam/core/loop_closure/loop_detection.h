@@ -50,6 +50,8 @@ struct LoopDetection {
   double inlier_ratio = 0.0;
   double inlier_mse = std::numeric_limits<double>::infinity();  // m^2
   int icp_iterations = 0;
+  // How far the refinement moved the current keyframe from where ICP put it (m); 0 unrefined.
+  double refinement_m = 0.0;
   // ICP's map-frame correction of the current keyframe: corrected pose = correction * pose.
   Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
   // T_matched^-1 * corrected T_current: the loop edge's measurement (when accepted).
@@ -71,11 +73,16 @@ std::optional<LoopCandidate> radius_candidate(const std::vector<Keyframe>& keyfr
 // candidate's map: the candidate and up to neighbourhood_keyframes keyframes on either side of it
 // (leaving out any less than min_time_gap older than the current one), in the map frame,
 // voxel-filtered. Accepted when ICP converged with at least min_inlier_ratio of the points within
-// inlier_distance of the map and their mean squared distance at most max_inlier_mse. Without a
-// candidate: kNoCandidate. Throws std::out_of_range for a bad current_index.
+// inlier_distance of the map and their mean squared distance at most max_inlier_mse. Given
+// `refinement` (mapping's params), an accepted loop's pose is then refined by ScanToMapMatcher:
+// the current keyframe's corners and surfaces (every n-th, at most icp_max_points) to lines and
+// planes of the candidate's map (its keyframes in a LocalMap); the refined pose when it matched,
+// ICP's otherwise. Without a candidate: kNoCandidate. Throws std::out_of_range for a bad
+// current_index.
 LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
                           const std::optional<LoopCandidate>& candidate,
-                          const LoopClosureParams& params);
+                          const LoopClosureParams& params,
+                          const std::optional<MappingParams>& refinement = std::nullopt);
 // The same with radius_candidate().
 LoopDetection detect_loop(const std::vector<Keyframe>& keyframes, int current_index,
                           const LoopClosureParams& params);
@@ -97,7 +104,8 @@ bool within_drift_bound(const std::vector<Keyframe>& keyframes, const LoopDetect
 
 // detect_loop in bounded steps: the candidate's map a few keyframes at a time
 // (params.map_points_per_scan), its voxel filter, its KD-tree, then params.icp_iterations_per_scan
-// ICP iterations a step, the fitness taking the place of the last. Any step sizes give
+// ICP iterations a step, the fitness taking the place of the last; refining an accepted loop, the
+// refinement's map a few keyframes at a time again, then the match in one step. Any step sizes give
 // detect_loop's detection bit for bit: ICP resumes exactly where it stopped (an iteration at a
 // time, from the cloud the last one left). The keyframes are read when the job is made: their
 // poses as they are then (their clouds are shared, not copied).
@@ -106,7 +114,8 @@ class LoopDetectionJob {
   // Samples the current keyframe's cloud; throws std::out_of_range for a bad current_index.
   // Already done when there is nothing to align.
   LoopDetectionJob(const std::vector<Keyframe>& keyframes, int current_index,
-                   const std::optional<LoopCandidate>& candidate, const LoopClosureParams& params);
+                   const std::optional<LoopCandidate>& candidate, const LoopClosureParams& params,
+                   const std::optional<MappingParams>& refinement = std::nullopt);
   ~LoopDetectionJob();
   LoopDetectionJob(LoopDetectionJob&&) noexcept;
   LoopDetectionJob& operator=(LoopDetectionJob&&) noexcept;
@@ -124,9 +133,13 @@ class LoopDetectionJob {
   void prepare_icp();
   void iterate_icp();
   void conclude(SteppedIcp& icp);
+  void add_to_refinement_map();
+  void refine();
+  void accept(const Eigen::Isometry3d& corrected);
   void finish(LoopStatus status);
 
   LoopClosureParams params_;
+  std::optional<MappingParams> refinement_;
   LoopDetection detection_;
   std::unique_ptr<Work> work_;  // null once done
 };

@@ -24,6 +24,9 @@ class LocalMap {
   // Follows the keyframes near `position`: keyframes that left the chosen set are taken out, new
   // ones put in. Returns whether the map changed.
   bool update(const std::vector<Keyframe>& keyframes, const Eigen::Vector3d& position);
+  // Puts a keyframe in whatever its position, for a map of chosen keyframes (a loop candidate's
+  // neighbourhood); not to be mixed with update().
+  void add(const Keyframe& keyframe) { active_.put_in(keyframe); }
   // Keyframe poses changed (a loop closed); `correction` takes the old map frame to the new one
   // near the current position (the newest keyframe's change: new pose = correction * old). The
   // keyframes are placed again from their new poses over the next updates, a few at a time, and
