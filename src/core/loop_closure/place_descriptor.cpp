@@ -23,14 +23,14 @@ void PlaceDescriptor::add(const Cloud& points, const Eigen::Matrix3f& level) {
   const float sector_per_rad = sectors_ / (2.f * float(M_PI));
   for (const CloudPoint& p : points) {
     const Eigen::Vector3f q = level * p.getVector3fMap();
-    const float radius = std::hypot(q.x(), q.y());
+    const float radius = std::sqrt(q.x() * q.x() + q.y() * q.y());
     if (!(radius < max_radius_) || !std::isfinite(q.z())) continue;
     const int ring = std::min(rings_ - 1, static_cast<int>(radius * ring_per_m));
     const int sector = std::min(
         sectors_ - 1, static_cast<int>((std::atan2(q.y(), q.x()) + float(M_PI)) * sector_per_rad));
     const float height = std::clamp(q.z() + height_offset_, kHeightStep, kMaxHeight);
     uint8_t& cell = cells_[static_cast<std::size_t>(sector) * rings_ + ring];
-    cell = std::max<uint8_t>(cell, static_cast<uint8_t>(std::lround(height / kHeightStep)));
+    cell = std::max<uint8_t>(cell, static_cast<uint8_t>(height / kHeightStep + 0.5f));
   }
 }
 
