@@ -43,21 +43,32 @@ for second in \$(seq 1 120); do
   rosnode list 2>/dev/null | grep -q '^/player$' && break
 done
 sleep \$(awk 'BEGIN {print 1 + $until_screenshot}')
-window=\$(xwininfo -root -tree | awk '/RViz/ {print \$1; exit}')
-import -window "\${window:-root}" "$screenshot"
-status=\$?
+# rviz's first start on a machine can take longer than that (its window missing, or not drawn
+# yet: a black image): a few more tries, until the picture is not one flat colour.
+status=1
+for attempt in \$(seq 1 15); do
+  window=\$(xwininfo -root -tree | awk '/RViz/ {print \$1; exit}')
+  if [ -n "\$window" ] && import -window "\$window" "$screenshot" &&
+      [ "\$(convert "$screenshot" -format '%[fx:standard_deviation > 0.01]' info:)" = 1 ]; then
+    status=0
+    break
+  fi
+  rm -f "$screenshot"
+  sleep 2
+done
 kill -INT \$launch
 wait \$launch 2>/dev/null
 exit \$status
 EOF
 chmod +x "$work/inside_display.sh"
+rm -f "$screenshot"
 if [ -n "${DISPLAY:-}" ]; then
-  "$work/inside_display.sh"
+  "$work/inside_display.sh" || true
 else
-  xvfb-run -a -s "-screen 0 1600x1050x24" "$work/inside_display.sh"
+  xvfb-run -a -s "-screen 0 1600x1050x24" "$work/inside_display.sh" || true
 fi
 if [ ! -s "$screenshot" ]; then
-  echo "rviz_screenshot: no screenshot taken (launch log: $work/launch.log)" >&2
+  echo "rviz_screenshot: no screenshot taken: the rviz window did not appear or stayed blank" >&2
   tail -n 20 "$work/launch.log" >&2 || true
   exit 1
 fi
