@@ -255,6 +255,8 @@ void read_odometry(SectionReader& in, OdometryParams& o) {
   in.number("start_search_step", o.start_search_step, 0.05, 10.0);
   in.number("max_speed", o.max_speed, 0.0, 1000.0);
   in.number("max_turn_rate_deg", o.max_turn_rate_deg, 0.0, 36000.0);
+  in.number("range_weight_fit_error", o.range_weight_fit_error, 0.0, 10.0);
+  in.number("range_weight_noise", o.range_weight_noise, 0.001, 1.0);
   in.reject_unknown_keys();
 }
 

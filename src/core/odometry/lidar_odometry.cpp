@@ -9,7 +9,10 @@ namespace adaptive_lego_loam {
 
 LidarOdometry::LidarOdometry(const SensorParams& sensor, const FeatureParams& features,
                              const OdometryParams& odometry)
-    : sensor_(sensor), params_(odometry), extractor_(features), registration_(odometry) {}
+    : sensor_(sensor),
+      params_(odometry),
+      extractor_(features),
+      registration_(odometry, sensor.beam_angles_deg) {}
 
 void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out) {
   Stopwatch watch;

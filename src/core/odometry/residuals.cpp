@@ -119,6 +119,8 @@ void evaluate_matches(const Pose& pose, const Correspondences& matches, MatchKin
       RowMajor<3, kParameters> j;
       if (with_jacobian) j = -skew(line.direction) * pose.jacobian(line.point);
       apply_huber<3, kParameters>(huber_loss, r, with_jacobian ? &j : nullptr);
+      r *= line.scale;
+      if (with_jacobian) j *= line.scale;
       for (int k = 0; k < 3; ++k, ++row) {
         residuals[row] = r[k];
         if (with_jacobian) write_row(row, j.row(k).data());
@@ -131,6 +133,8 @@ void evaluate_matches(const Pose& pose, const Correspondences& matches, MatchKin
       RowMajor<1, kParameters> j;
       if (with_jacobian) j = plane.normal.transpose() * pose.jacobian(plane.point);
       apply_huber<1, kParameters>(huber_loss, r, with_jacobian ? &j : nullptr);
+      r *= plane.scale;
+      if (with_jacobian) j *= plane.scale;
       residuals[row] = r[0];
       if (with_jacobian) write_row(row, j.data());
       ++row;

@@ -3,6 +3,7 @@
 #include <ceres/manifold.h>
 #include <ceres/problem.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "adaptive_lego_loam/core/odometry/residuals.h"
@@ -26,9 +27,39 @@ Eigen::Vector3f moved_point(const CloudPoint& p, const Eigen::Isometry3d& pose) 
   return (pose * position(p)).cast<float>();
 }
 
+// A row's spacing: half the gap between its neighbours (the one gap at either end).
+std::vector<double> ring_spacing_rad(const std::vector<double>& beam_angles_deg) {
+  std::vector<double> spacing;
+  const std::size_t rows = beam_angles_deg.size();
+  if (rows < 2) return spacing;
+  for (std::size_t row = 0; row < rows; ++row) {
+    const std::size_t below = row == 0 ? 0 : row - 1, above = std::min(row + 1, rows - 1);
+    const double gap_deg = (beam_angles_deg[above] - beam_angles_deg[below]) / (above - below);
+    spacing.push_back(gap_deg * M_PI / 180.0);
+  }
+  return spacing;
+}
+
 }  // namespace
 
-ScanToScanOdometry::ScanToScanOdometry(const OdometryParams& params) : params_(params) {}
+ScanToScanOdometry::ScanToScanOdometry(const OdometryParams& params,
+                                       const std::vector<double>& beam_angles_deg)
+    : params_(params) {
+  if (params.range_weight_fit_error > 0.0) ring_spacing_rad_ = ring_spacing_rad(beam_angles_deg);
+}
+
+// sqrt of range^2 / (noise^2 + (fit_error x spacing x range)^2), over the same at kReferenceRange.
+double ScanToScanOdometry::range_scale(const CloudPoint& p) const {
+  if (ring_spacing_rad_.empty()) return 1.0;
+  constexpr double kReferenceRange = 10.0;  // m
+  const int row = std::clamp(row_of(p), 0, static_cast<int>(ring_spacing_rad_.size()) - 1);
+  const double blur = params_.range_weight_fit_error * ring_spacing_rad_[row];
+  const double noise = params_.range_weight_noise;
+  const auto root_weight = [&](double range) {
+    return range / std::sqrt(noise * noise + blur * blur * range * range);
+  };
+  return root_weight(std::max(position(p).norm(), 1.0)) / root_weight(kReferenceRange);
+}
 
 void ScanToScanOdometry::reset() {
   previous_corners_.reset();
@@ -56,7 +87,7 @@ void ScanToScanOdometry::find_edge_matches(const Cloud& sharp, const Eigen::Isom
       if (row_gap == 0 || row_gap > 2) continue;
       const Eigen::Vector3d along = position(nearest) - position(other);
       if (along.norm() < 1e-6) continue;
-      matches.lines.push_back({position(p), position(nearest), along.normalized()});
+      matches.lines.push_back({position(p), position(nearest), along.normalized(), range_scale(p)});
       break;
     }
   }
@@ -90,7 +121,7 @@ void ScanToScanOdometry::find_plane_matches(const Cloud& flat, const Eigen::Isom
     Eigen::Vector3d normal = (b - a).cross(c - a);
     if (normal.norm() < 1e-6) continue;
     normal.normalize();
-    matches.planes.push_back({position(p), normal, -normal.dot(a)});
+    matches.planes.push_back({position(p), normal, -normal.dot(a), range_scale(p)});
   }
 }
 

@@ -160,3 +160,72 @@ TEST(ScanToScan, AlignedFromEachGuessBesideRepeatingPostsTheTruthIsAmongTheFits)
   // Nothing was kept: the next registration is still against the first scan.
   expect_recovered(searched.register_scan(second, truth), truth);
 }
+
+namespace {
+
+// The road between posts, and a lorry in the next lane, 3 m beside the sensor, keeping pace with
+// it: it looks the same in both scans, so its correspondences say the sensor stood still, and
+// along the road only the posts and a few objects say otherwise.
+Scene road_with_lorry_beside(const Eigen::Isometry3d& sensor_pose) {
+  Scene scene = post_rows();
+  const double x = sensor_pose.translation().x();
+  scene.boxes.push_back({{x - 6.0, 2.2, -1.7}, {x + 6.0, 4.7, 2.2}});
+  return scene;
+}
+
+// An HDL-64E-like sensor: 64 beams 0.4 deg apart.
+const SensorParams& dense_sensor() {
+  static const SensorParams sensor = test::even_sensor(64, 2083, -24.8, 2.0);
+  return sensor;
+}
+
+FeatureSet dense_features(const Scene& scene, const Eigen::Isometry3d& pose) {
+  Segmenter segmenter(dense_sensor(), SegmentationParams());
+  SegmentationResult segmentation;
+  segmenter.process(test::render(dense_sensor(), scene, pose), segmentation);
+  FeatureExtractor extractor{FeatureParams()};
+  FeatureSet features;
+  extractor.extract(segmentation.cloud, segmentation.cloud.points, segmentation.cloud.outliers,
+                    features);
+  return features;
+}
+
+double error_beside_a_lorry(const OdometryParams& params) {
+  const Eigen::Isometry3d truth = motion_of(2.6, 0.0, 0.0);
+  ScanToScanOdometry odometry(params, dense_sensor().beam_angles_deg);
+  const Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  odometry.register_scan(dense_features(road_with_lorry_beside(start), start), start);
+  const OdometryResult result =
+      odometry.register_scan(dense_features(road_with_lorry_beside(truth), truth), truth);
+  EXPECT_TRUE(result.registered);
+  return (result.motion.translation() - truth.translation()).norm();
+}
+
+}  // namespace
+
+// Weighed by the surface each point stands for, the lorry's many close points no longer outvote
+// the road's posts: from the true motion as the guess, the estimate stays near it.
+TEST(ScanToScan, RangeWeightingKeepsALorryKeepingPaceFromDraggingTheMotion) {
+  OdometryParams unweighted;
+  OdometryParams weighted;
+  weighted.range_weight_fit_error = 0.1;
+  const double dragged = error_beside_a_lorry(unweighted);
+  const double kept = error_beside_a_lorry(weighted);
+  std::printf("[ measured ] error beside a lorry: %.3f m unweighted, %.3f m weighted\n", dragged,
+              kept);
+  EXPECT_GT(dragged, 0.1) << "the premise: unweighted, the lorry drags the motion";
+  EXPECT_LT(kept, 0.75 * dragged);
+}
+
+TEST(ScanToScan, WithoutBeamAnglesRangeWeightingChangesNothing) {
+  const Eigen::Isometry3d truth = motion_of(0.8, 0.1, 3.0);
+  OdometryParams weighted;
+  weighted.range_weight_fit_error = 0.1;
+  ScanToScanOdometry plain{OdometryParams()}, without_beams{weighted};
+  const Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  plain.register_scan(features_at(start), start);
+  without_beams.register_scan(features_at(start), start);
+  const OdometryResult a = plain.register_scan(features_at(truth), start);
+  const OdometryResult b = without_beams.register_scan(features_at(truth), start);
+  EXPECT_TRUE(a.motion.isApprox(b.motion, 1e-12));
+}

@@ -129,6 +129,12 @@ struct OdometryParams {
   // predicted motion instead. 0: no bound.
   double max_speed = 50.0;           // m/s
   double max_turn_rate_deg = 360.0;  // deg/s
+  // > 0: each scan-to-scan correspondence weighs by the surface its point stands for (range^2)
+  // over its expected squared error: range_weight_noise^2 plus (range_weight_fit_error x the ring
+  // spacing at its range)^2, relative to a point 10 m away. A car keeping pace close beside the
+  // sensor then cannot outvote the scene. 0: every correspondence weighs the same.
+  double range_weight_fit_error = 0.0;
+  double range_weight_noise = 0.02;  // m
 };
 
 // Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).

@@ -20,14 +20,17 @@
 namespace adaptive_lego_loam {
 
 // A feature point (scan frame) and the line it should lie on (target frame): through `through`,
-// along the unit vector `direction`.
+// along the unit vector `direction`. Each match's residual (after its Huber loss) is multiplied by
+// `scale`: its cost weighs scale^2.
 struct LineMatch {
   Eigen::Vector3d point, through, direction;
+  double scale = 1.0;
 };
 // A feature point (scan frame) and the plane normal . x + offset = 0, |normal| = 1 (target frame).
 struct PlaneMatch {
   Eigen::Vector3d point, normal;
   double offset;
+  double scale = 1.0;
 };
 
 struct Correspondences {

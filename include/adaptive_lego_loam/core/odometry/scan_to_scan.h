@@ -29,7 +29,10 @@ struct OdometryResult {
 
 class ScanToScanOdometry {
  public:
-  explicit ScanToScanOdometry(const OdometryParams& params);
+  // `beam_angles_deg` (the sensor's, ascending) set the ring spacing of the range weighting
+  // (OdometryParams::range_weight_fit_error); without them every correspondence weighs the same.
+  explicit ScanToScanOdometry(const OdometryParams& params,
+                              const std::vector<double>& beam_angles_deg = {});
   // Registers `current` against the previous scan's features, starting from `guess` (the motion
   // from the previous scan to this one); then keeps `current` as the previous scan.
   OdometryResult register_scan(const FeatureSet& current, const Eigen::Isometry3d& guess);
@@ -52,8 +55,11 @@ class ScanToScanOdometry {
   // 6-vector held fixed.
   void solve(const Correspondences& matches, MatchKinds kinds,
              const std::vector<int>& fixed_entries, double* pose) const;
+  // The residual scale of a correspondence of feature point `p` (its row in the intensity).
+  double range_scale(const CloudPoint& p) const;
 
   OdometryParams params_;
+  std::vector<double> ring_spacing_rad_;  // per row; empty: no range weighting
   bool first_pair_ = true;
   CloudPtr previous_corners_, previous_surfaces_;
   PointKdTree corner_tree_, surface_tree_;
