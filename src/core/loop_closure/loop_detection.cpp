@@ -180,10 +180,10 @@ struct LoopDetectionJob::Work {
   std::optional<VoxelSums> map_sums;    // with voxel_size > 0
   CloudPtr map{new Cloud};  // the map to align to (gathered here directly without a filter)
   CloudPtr source;
-  Eigen::Isometry3d current_pose, guess, matched_pose;
+  Eigen::Isometry3d guess, matched_pose;
   std::unique_ptr<SteppedIcp> icp;
-  // Refining: the current keyframe, the candidate's map as mapping's, where ICP put the keyframe.
-  Keyframe current;
+  Keyframe current;  // as when the job began
+  // Refining: the candidate's map as mapping's, and where ICP put the keyframe.
   std::optional<LocalMap> refinement_map;
   Eigen::Isometry3d icp_pose;
 };
@@ -212,7 +212,6 @@ LoopDetectionJob::LoopDetectionJob(const std::vector<Keyframe>& keyframes, int c
         neighbourhood(keyframes, detection_.matched_index, current_index, params);
     work_->source = sample(verification_source(keyframes[current_index], candidate->guess, params),
                            params.icp_max_points);
-    work_->current_pose = keyframes[current_index].pose;
     work_->current = keyframes[current_index];
     work_->guess = candidate->guess;
     work_->matched_pose = keyframes.at(detection_.matched_index).pose;
@@ -329,7 +328,7 @@ void LoopDetectionJob::conclude(SteppedIcp& icp) {
   detection_.inlier_mse = inliers.mean_squared_distance;
   // ICP moved the source from the guess: the current keyframe belongs there.
   const Eigen::Isometry3d corrected = isometry_of(icp.transformation()) * work_->guess;
-  detection_.correction = corrected * work_->current_pose.inverse();
+  detection_.correction = corrected * work_->current.pose.inverse();
   if (inliers.ratio < params_.min_inlier_ratio ||
       inliers.mean_squared_distance > params_.max_inlier_mse) {
     finish(LoopStatus::kTooFewInliers);
@@ -383,7 +382,7 @@ void LoopDetectionJob::refine() {
 }
 
 void LoopDetectionJob::accept(const Eigen::Isometry3d& corrected) {
-  detection_.correction = corrected * work_->current_pose.inverse();
+  detection_.correction = corrected * work_->current.pose.inverse();
   detection_.relative_pose = work_->matched_pose.inverse() * corrected;
   finish(LoopStatus::kAccepted);
 }

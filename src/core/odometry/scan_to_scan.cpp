@@ -27,7 +27,7 @@ Eigen::Vector3f moved_point(const CloudPoint& p, const Eigen::Isometry3d& pose) 
   return (pose * position(p)).cast<float>();
 }
 
-// A row's spacing: half the gap between its neighbours (the one gap at either end).
+// A row's spacing: the mean of its gaps to the rows beside it (the one gap at either end).
 std::vector<double> ring_spacing_rad(const std::vector<double>& beam_angles_deg) {
   std::vector<double> spacing;
   const std::size_t rows = beam_angles_deg.size();
@@ -45,20 +45,27 @@ std::vector<double> ring_spacing_rad(const std::vector<double>& beam_angles_deg)
 ScanToScanOdometry::ScanToScanOdometry(const OdometryParams& params,
                                        const std::vector<double>& beam_angles_deg)
     : params_(params) {
-  if (params.range_weight_fit_error > 0.0) ring_spacing_rad_ = ring_spacing_rad(beam_angles_deg);
+  if (!(params.range_weight_fit_error > 0.0)) return;
+  constexpr double kReferenceRange = 10.0;  // m
+  for (double spacing : ring_spacing_rad(beam_angles_deg)) {
+    const double blur = params.range_weight_fit_error * spacing;
+    range_weighting_.push_back({blur, 0.0});
+    range_weighting_.back().reference = root_weight(range_weighting_.back(), kReferenceRange);
+  }
 }
 
-// sqrt of range^2 / (noise^2 + (fit_error x spacing x range)^2), over the same at kReferenceRange.
-double ScanToScanOdometry::range_scale(const CloudPoint& p) const {
-  if (ring_spacing_rad_.empty()) return 1.0;
-  constexpr double kReferenceRange = 10.0;  // m
-  const int row = std::clamp(row_of(p), 0, static_cast<int>(ring_spacing_rad_.size()) - 1);
-  const double blur = params_.range_weight_fit_error * ring_spacing_rad_[row];
+// sqrt(range^2 / (noise^2 + (blur x range)^2)): the root of a correspondence's weight.
+double ScanToScanOdometry::root_weight(const RangeWeighting& row, double range) const {
   const double noise = params_.range_weight_noise;
-  const auto root_weight = [&](double range) {
-    return range / std::sqrt(noise * noise + blur * blur * range * range);
-  };
-  return root_weight(std::max(position(p).norm(), 1.0)) / root_weight(kReferenceRange);
+  return range / std::sqrt(noise * noise + row.blur_rad * row.blur_rad * range * range);
+}
+
+// The root weight relative to a point 10 m away on the same row.
+double ScanToScanOdometry::range_scale(const CloudPoint& p) const {
+  if (range_weighting_.empty()) return 1.0;
+  const int last_row = static_cast<int>(range_weighting_.size()) - 1;
+  const RangeWeighting& row = range_weighting_[std::clamp(row_of(p), 0, last_row)];
+  return root_weight(row, std::max(position(p).norm(), 1.0)) / row.reference;
 }
 
 void ScanToScanOdometry::reset() {

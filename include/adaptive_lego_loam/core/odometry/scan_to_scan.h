@@ -55,11 +55,18 @@ class ScanToScanOdometry {
   // 6-vector held fixed.
   void solve(const Correspondences& matches, MatchKinds kinds,
              const std::vector<int>& fixed_entries, double* pose) const;
+  // The range weighting's constants of a row: the fit error's growth with range (rad), and the
+  // root weight of a point 10 m away.
+  struct RangeWeighting {
+    double blur_rad;
+    double reference;
+  };
+  double root_weight(const RangeWeighting& row, double range) const;
   // The residual scale of a correspondence of feature point `p` (its row in the intensity).
   double range_scale(const CloudPoint& p) const;
 
   OdometryParams params_;
-  std::vector<double> ring_spacing_rad_;  // per row; empty: no range weighting
+  std::vector<RangeWeighting> range_weighting_;  // per row; empty: no range weighting
   bool first_pair_ = true;
   CloudPtr previous_corners_, previous_surfaces_;
   PointKdTree corner_tree_, surface_tree_;
