@@ -118,3 +118,56 @@ TEST(Deskew, InterpolatedMotionRunsFromIdentityToTheWholeMotion) {
   EXPECT_TRUE((half * half).linear().isApprox(motion.linear(), 1e-12));
   EXPECT_TRUE(half.translation().isApprox(0.5 * motion.translation(), 1e-12));
 }
+
+// Each point moved by the whole pose interpolated at its fraction: what deskew_to_sweep_end must
+// give, whatever shortcut it takes per point.
+void expect_deskew_follows_the_interpolated_motion(const Eigen::Isometry3d& motion) {
+  const Sweep sweep;
+  std::vector<float> fractions(sweep.scan.points.size());
+  for (std::size_t i = 0; i < fractions.size(); ++i)
+    fractions[i] = static_cast<float>(i) / static_cast<float>(fractions.size());
+  std::vector<ScanPoint> points = sweep.scan.points;
+  deskew_to_sweep_end(motion, fractions, points);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const ScanPoint& p = sweep.scan.points[i];
+    const Eigen::Vector3d expected = motion.inverse() * interpolate_motion(motion, fractions[i]) *
+                                     Eigen::Vector3d(p.x, p.y, p.z);
+    worst =
+        std::max(worst, (Eigen::Vector3d(points[i].x, points[i].y, points[i].z) - expected).norm());
+  }
+  EXPECT_LT(worst, 1e-5);
+}
+
+TEST(Deskew, EveryPointMovedAsTheInterpolatedMotionMovesIt) {
+  expect_deskew_follows_the_interpolated_motion(sweep_motion());
+  // A sweep turning more than half a radian (a spinning platform), and one not turning at all.
+  Eigen::Isometry3d spin = sweep_motion();
+  spin.linear() =
+      Eigen::AngleAxisd(1.4, Eigen::Vector3d(0.2, -0.1, 1.0).normalized()).toRotationMatrix();
+  expect_deskew_follows_the_interpolated_motion(spin);
+  Eigen::Isometry3d straight = Eigen::Isometry3d::Identity();
+  straight.translation() = Eigen::Vector3d(2.5, 0.0, 0.0);
+  expect_deskew_follows_the_interpolated_motion(straight);
+}
+
+TEST(Deskew, TheSweepsFirstPointStartsItWhateverItsAzimuth) {
+  for (double azimuth_deg : {-180.0, -179.99, -90.0, 0.0, 0.003, 45.0, 135.0, 179.99, 180.0}) {
+    const double azimuth = azimuth_deg * M_PI / 180.0;
+    ScanPoint first, later;
+    first.x = static_cast<float>(20.0 * std::cos(azimuth));
+    first.y = static_cast<float>(20.0 * std::sin(azimuth));
+    // A quarter turn on, clockwise.
+    later.x = static_cast<float>(20.0 * std::cos(azimuth - M_PI / 2));
+    later.y = static_cast<float>(20.0 * std::sin(azimuth - M_PI / 2));
+    // Half a degree before the start: the end of the sweep.
+    ScanPoint last;
+    last.x = static_cast<float>(20.0 * std::cos(azimuth + 0.5 * M_PI / 180.0));
+    last.y = static_cast<float>(20.0 * std::sin(azimuth + 0.5 * M_PI / 180.0));
+    std::vector<float> fractions;
+    sweep_fractions({first, later, last}, false, std::atan2(first.y, first.x), 0.1, fractions);
+    EXPECT_LT(fractions[0], 1e-5) << azimuth_deg;
+    EXPECT_NEAR(fractions[1], 0.25, 1e-5) << azimuth_deg;
+    EXPECT_NEAR(fractions[2], 1.0 - 0.5 / 360.0, 1e-5) << azimuth_deg;
+  }
+}

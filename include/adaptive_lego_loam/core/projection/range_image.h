@@ -118,8 +118,4 @@ class RangeProjector {
 // for the log of a node or tool that drops the scan.
 std::string projection_problem(const ProjectionStats& stats);
 
-// atan2 to about 1e-5 rad, several times faster than std::atan2; used where a column index or
-// a sweep fraction is all that is needed.
-float fast_atan2(float y, float x);
-
 }  // namespace adaptive_lego_loam
