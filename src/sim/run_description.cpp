@@ -98,7 +98,8 @@ std::string run_yaml(const RunDescription& run) {
       << "uint32 per point: semantic class (SemanticKITTI ids) in the lower 16 bits, instance "
          "id in the upper 16";
   out << YAML::Key << "poses" << YAML::Value
-      << "sensor pose at each sweep's start, relative to the first frame's (KITTI 3x4)";
+      << "sensor pose at each scan's time (a skewed sweep's end), relative to the first frame's "
+         "(KITTI 3x4)";
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

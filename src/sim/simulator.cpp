@@ -115,12 +115,16 @@ void LidarSimulator::render(int frame, SimFrame& out) {
   out.time = trajectory_->frame_time(frame);
   out.sensor_pose = trajectory_->sensor_pose(out.time);
   const double period = model_.sensor().scan_period;
-  const Eigen::Vector3d middle = trajectory_->sensor_pose(out.time + 0.5 * period).translation();
+  // A moving sweep ends at the frame's time, as a Velodyne driver stamps a scan with its last
+  // packet: the frame's pose is the sweep's end, where de-skewing puts the scan. Without motion
+  // every ray leaves from the frame's pose.
+  const double sweep_start = model_.options().motion_distortion ? out.time - period : out.time;
+  const Eigen::Vector3d middle = trajectory_->sensor_pose(sweep_start + 0.5 * period).translation();
 
   auto started = std::chrono::steady_clock::now();
   // Moving objects stand where they are at the sweep's middle for the whole sweep.
-  caster_.prepare(frame, out.time + 0.5 * period, middle);
-  make_column_poses(out.time, out.sensor_pose);
+  caster_.prepare(frame, sweep_start + 0.5 * period, middle);
+  make_column_poses(sweep_start, out.sensor_pose);
   ray_casting_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 

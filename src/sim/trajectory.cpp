@@ -105,8 +105,13 @@ SampledTrajectory::SampledTrajectory(std::vector<double> times,
 }
 
 Eigen::Isometry3d SampledTrajectory::sensor_pose(double time) const {
-  const double t = std::clamp(time + times_.front(), times_.front(), times_.back());
-  const auto after = std::upper_bound(times_.begin(), times_.end(), t);
+  // Before the first sample the drive goes on as over its first step (the first sweep of a drive
+  // entered at speed is skewed like the others); after the last it stands.
+  const bool before = time < 0.0 && times_.size() > 1;
+  const double t = before ? time + times_.front()
+                          : std::clamp(time + times_.front(), times_.front(), times_.back());
+  const auto after =
+      before ? times_.begin() + 1 : std::upper_bound(times_.begin(), times_.end(), t);
   const std::size_t i =
       after == times_.end() ? times_.size() - 1 : static_cast<std::size_t>(after - times_.begin());
   if (i == 0 || times_[i] == t) return poses_[i] * shake_.at(time);
@@ -114,7 +119,8 @@ Eigen::Isometry3d SampledTrajectory::sensor_pose(double time) const {
   const Eigen::Quaterniond q0(poses_[i - 1].linear()), q1(poses_[i].linear());
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = (1.0 - f) * poses_[i - 1].translation() + f * poses_[i].translation();
-  pose.linear() = q0.slerp(f, q1).toRotationMatrix();
+  pose.linear() =
+      before ? q0.slerp(f, q1).normalized().toRotationMatrix() : q0.slerp(f, q1).toRotationMatrix();
   return pose * shake_.at(time);
 }
 

@@ -213,22 +213,26 @@ TEST(SimRayCasting, MotionDistortionMovesPointsWithTheirFiringTime) {
   const uint32_t wall = world->add_surface(SemanticClass::kBuilding, 1, 0.5f);
   add_square(world->tile_at(Eigen::Vector3f(20, 0, 0)), Eigen::Vector3f(20, 0, 0),
              -Eigen::Vector3f::UnitX(), 40.0f, wall);
-  // Driving along x at 10 m/s.
-  Eigen::Isometry3d later = Eigen::Isometry3d::Identity();
-  later.translation().x() = 10.0;
-  auto driving = std::make_shared<SampledTrajectory>(
-      std::vector<double>{0.0, 1.0},
-      std::vector<Eigen::Isometry3d>{Eigen::Isometry3d::Identity(), later}, Shake());
+  // Driving along x at 10 m/s; frame 1 at 0.5 s, 5 m on.
+  std::vector<Eigen::Isometry3d> poses(3, Eigen::Isometry3d::Identity());
+  poses[1].translation().x() = 5.0;
+  poses[2].translation().x() = 10.0;
+  auto driving =
+      std::make_shared<SampledTrajectory>(std::vector<double>{0.0, 0.5, 1.0}, poses, Shake());
   const SensorParams sensor = vlp16();
   SimSensorOptions options = exact_options(1800);
   options.motion_distortion = true;
-  const SimFrame skewed = render_one(sensor, options, world, driving);
+  const SimFrame skewed = render_one(sensor, options, world, driving, 1);
   options.motion_distortion = false;
-  const SimFrame deskewed = render_one(sensor, options, world, driving);
+  const SimFrame deskewed = render_one(sensor, options, world, driving, 1);
   ASSERT_GT(skewed.scan.points.size(), 500u);
   ASSERT_GT(deskewed.scan.points.size(), 500u);
+  // The sweep ends at the frame's time and pose (as a Velodyne driver stamps a scan with its
+  // last packet); each point's time runs from the sweep's first firing.
+  EXPECT_NEAR(skewed.sensor_pose.translation().x(), 5.0, 1e-9);
+  EXPECT_NEAR(skewed.scan.stamp, 0.5, 1e-9);
   for (const ScanPoint& p : skewed.scan.points)
-    ASSERT_NEAR(p.x, 20.0 - 10.0 * p.time, 2e-3);
+    ASSERT_NEAR(p.x, 20.0 - 10.0 * (0.5 - sensor.scan_period + p.time), 2e-3);
   for (const ScanPoint& p : deskewed.scan.points)
-    ASSERT_NEAR(p.x, 20.0, 2e-3);
+    ASSERT_NEAR(p.x, 15.0, 2e-3);
 }

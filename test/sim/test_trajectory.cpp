@@ -23,6 +23,21 @@ using namespace adaptive_lego_loam;
 using namespace adaptive_lego_loam::sim;
 using namespace adaptive_lego_loam::sim::test;
 
+// A skewed sweep ends at its frame's time, so the first one starts a scan period before the
+// first pose: a drive entered at speed goes on as over its first step there, turning as it turns.
+TEST(SimTrajectory, BeforeItsFirstPoseASampledDriveKeepsItsFirstMotion) {
+  std::vector<Eigen::Isometry3d> poses(2, Eigen::Isometry3d::Identity());
+  poses[1].translation() = Eigen::Vector3d(2.5, 0.1, 0.0);
+  poses[1].linear() = Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const SampledTrajectory drive({10.0, 10.1}, poses, Shake());
+  const Eigen::Isometry3d before = drive.sensor_pose(-0.1);
+  EXPECT_TRUE(before.translation().isApprox(Eigen::Vector3d(-2.5, -0.1, 0.0), 1e-9));
+  EXPECT_NEAR(Eigen::AngleAxisd(before.linear()).angle(), 0.05, 1e-9);
+  EXPECT_NEAR(before.linear()(1, 0), -std::sin(0.05), 1e-9);
+  EXPECT_TRUE(drive.sensor_pose(0.05).translation().isApprox(Eigen::Vector3d(1.25, 0.05, 0.0)));
+  EXPECT_TRUE(drive.sensor_pose(0.3).isApprox(poses[1]));  // after the last: it stands
+}
+
 TEST(SimTrajectory, KittiGroundTruthDrivesTheSensor) {
   const std::vector<Eigen::Isometry3d> camera =
       adaptive_lego_loam::read_kitti_poses(std::string(TEST_DATA_DIR) + "/kitti_seq07/poses.txt");

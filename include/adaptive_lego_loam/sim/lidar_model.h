@@ -18,8 +18,9 @@ struct SimSensorOptions {
   double full_return_incidence_deg = 70.0;
   double no_return_incidence_deg = 86.0;
   // The sensor moves during the sweep and each column is reported in the sensor's frame at its
-  // own firing time (a raw, skewed scan). Off: every ray leaves from the sweep-start pose (a
-  // perfectly de-skewed scan, as KITTI ships).
+  // own firing time (a raw, skewed scan); the sweep ends at the frame's time and pose, as a
+  // Velodyne driver stamps a scan with its last packet. Off: every ray leaves from the frame's
+  // pose (a perfectly de-skewed scan, as KITTI ships).
   bool motion_distortion = true;
   // Beam divergence: the pulse's footprint grows with range (3 mrad: 3 cm at 10 m), and where it
   // falls on surfaces at different ranges (an edge, foliage) their echoes closer than

@@ -20,8 +20,9 @@ struct SimFrame {
   Scan scan;  // sensor frame, with ring (= beam, 0 lowest) and time (s from the sweep's start)
   std::vector<uint32_t> labels;          // per point, SemanticKITTI packing
   std::vector<Eigen::Vector3f> normals;  // per point, sensor frame, unit, facing the sensor
-  Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();  // world, at the sweep's start
-  double time = 0.0;                                              // sweep start
+  // World, at the scan's time: where a skewed sweep ends (its first firing a scan period before).
+  Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();
+  double time = 0.0;
 };
 
 class LidarSimulator {
