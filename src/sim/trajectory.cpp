@@ -119,8 +119,9 @@ Eigen::Isometry3d SampledTrajectory::sensor_pose(double time) const {
   const Eigen::Quaterniond q0(poses_[i - 1].linear()), q1(poses_[i].linear());
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = (1.0 - f) * poses_[i - 1].translation() + f * poses_[i].translation();
-  pose.linear() =
-      before ? q0.slerp(f, q1).normalized().toRotationMatrix() : q0.slerp(f, q1).toRotationMatrix();
+  Eigen::Quaterniond rotation = q0.slerp(f, q1);
+  if (before) rotation.normalize();  // slerp extrapolated near the identity is not unit
+  pose.linear() = rotation.toRotationMatrix();
   return pose * shake_.at(time);
 }
 
