@@ -426,6 +426,13 @@ class Report:
                 for key in ("beta0_min_deg", "beta0_max_deg")]
         return "-".join(f"{float(end):g}" for end in ends) + " deg"
 
+    def beta0_maps(self):
+        """The sensors' maps from mu to beta0, named once when they agree."""
+        hdl64e, vlp16 = self.beta0_map("kitti.yaml"), self.beta0_map("vlp16.yaml")
+        if hdl64e == vlp16:
+            return f"{hdl64e} on both sensors"
+        return f"{hdl64e} on the HDL-64E, {vlp16} on the VLP-16"
+
     def write(self):
         quick = self.results["quick"]
         sections = [f"""# Results
@@ -439,7 +446,7 @@ command (`--data DIR` or `ALEGO_DATA`: the folder with `kitti_odometry/` and
 Methods: LeGO-LOAM's depth-clustering threshold beta0 fixed at 10, 30 and 60 deg (`run_sequence
 --beta0`), the adaptive beta0 of the paper (`--adaptive`, with the config's Euclidean criterion
 and window, the authors' range-difference test with w 5, and its map from mu to beta0:
-{self.beta0_map("kitti.yaml")} on the HDL-64E, {self.beta0_map("vlp16.yaml")} on the VLP-16), the
+{self.beta0_maps()}), the
 same with the distance test of the paper's text and w 3 (`adaptive d3`,
 `ambient_filter.euclidean_criterion: distance`, `euclidean_window: 3`), the same
 with the paper's 10-60 deg map (`adaptive 10-60`, `ambient_filter.beta0_max_deg: 60`), and no

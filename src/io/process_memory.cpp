@@ -42,4 +42,11 @@ void return_free_memory_to_system() {
   malloc_trim(0);
 }
 
+bool HeapTrimmer::after_scan() {
+  if (++scans_ < every_scans_) return false;
+  scans_ = 0;
+  return_free_memory_to_system();
+  return true;
+}
+
 }  // namespace adaptive_lego_loam

@@ -233,7 +233,7 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
     publish(group.stamp);
   }
   last_stamp_ = group.stamp;
-  return_free_memory_to_system();  // in a nodelet manager, for every stage in it
+  heap_trimmer_.after_scan();
 }
 
 // An attempt is reported on the scan it finished, some scans after its keyframe.

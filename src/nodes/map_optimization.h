@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
+#include "adaptive_lego_loam/io/process_memory.h"
 #include "adaptive_lego_loam/ros/node_config.h"
 #include "adaptive_lego_loam/ros/node_diagnostics.h"
 #include "adaptive_lego_loam/ros/node_logging.h"
@@ -91,6 +92,7 @@ class MapOptimizationNode {
   ros::Publisher mapped_pub_, surround_pub_, keyframe_pub_, path_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   ros_bridge::NodeDiagnostics diagnostics_;
+  HeapTrimmer heap_trimmer_;  // in a nodelet manager, for every stage in it
   // save_map runs on its own thread: a save does not hold up the scans.
   ros::CallbackQueue service_queue_;
   ros::ServiceServer save_service_;

@@ -283,6 +283,7 @@ int run(const Options& options) {
   std::fprintf(stderr, "run_sequence: %s, config %s, %s\n", sequence->describe().c_str(),
                options.config.c_str(), describe_segmentation(config.ambient).c_str());
   ProgressBar progress("run_sequence", total);
+  HeapTrimmer heap_trimmer;
   Stopwatch wall(Clock::kWall);
   int frames = 0, empty_scans = 0, motion_gated_scans = 0, skipped_scans = 0;
   int odometry_rejected_motions = 0;
@@ -305,7 +306,7 @@ int run(const Options& options) {
       stamps.add(scan->stamp);
       last_stamp = scan->stamp;
       const FrameResult& result = pipeline->process(*scan);
-      return_free_memory_to_system();
+      heap_trimmer.after_scan();
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
       odometry_rejected_motions += result.odometry.rejected;

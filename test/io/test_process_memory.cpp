@@ -49,5 +49,19 @@ TEST(ProcessMemory, AHoleLeftInTheHeapGoesBackToTheSystem) {
   EXPECT_LT(resident_memory_mb(), resident_before - 40.0);
 }
 
+TEST(ProcessMemory, TheHeapIsTrimmedEveryFewScans) {
+  if (!glibc_heap_in_use()) GTEST_SKIP() << "the heap is not glibc's";
+  HeapTrimmer trimmer(3);
+  HeapHole hole(48.0);
+  hole.free_blocks();
+  const double resident_before = resident_memory_mb();
+  EXPECT_FALSE(trimmer.after_scan());
+  EXPECT_FALSE(trimmer.after_scan());
+  EXPECT_GT(resident_memory_mb(), resident_before - 8.0) << "kept until the third scan";
+  EXPECT_TRUE(trimmer.after_scan());
+  EXPECT_LT(resident_memory_mb(), resident_before - 40.0);
+  EXPECT_FALSE(trimmer.after_scan()) << "and counted again from there";
+}
+
 }  // namespace
 }  // namespace adaptive_lego_loam
