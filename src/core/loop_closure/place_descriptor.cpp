@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "adaptive_lego_loam/core/common/fast_atan2.h"
+
 namespace adaptive_lego_loam {
 namespace {
 
@@ -27,7 +29,7 @@ void PlaceDescriptor::add(const Cloud& points, const Eigen::Matrix3f& level) {
     if (!(radius < max_radius_) || !std::isfinite(q.z())) continue;
     const int ring = std::min(rings_ - 1, static_cast<int>(radius * ring_per_m));
     const int sector = std::min(
-        sectors_ - 1, static_cast<int>((std::atan2(q.y(), q.x()) + float(M_PI)) * sector_per_rad));
+        sectors_ - 1, static_cast<int>((fast_atan2(q.y(), q.x()) + float(M_PI)) * sector_per_rad));
     const float height = std::clamp(q.z() + height_offset_, kHeightStep, kMaxHeight);
     uint8_t& cell = cells_[static_cast<std::size_t>(sector) * rings_ + ring];
     cell = std::max<uint8_t>(cell, static_cast<uint8_t>(height / kHeightStep + 0.5f));

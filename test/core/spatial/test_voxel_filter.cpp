@@ -54,3 +54,27 @@ TEST(VoxelFilter, OfTwoCloudsIsTheFilterOfTheirJoin) {
   }
   EXPECT_EQ(filter(*surfaces, *outliers, 0.0)->size(), joined.size());  // no filtering
 }
+
+TEST(VoxelKeys, AVoxelIndexIsTheFloorOfTheScaledCoordinate) {
+  // Points on a voxel's lower face belong to it, points just below it to the voxel below, on both
+  // sides of zero and far from the origin.
+  for (const double inverse_leaf : {1.0, 2.5, 5.0, 1.0 / 0.3}) {
+    SCOPED_TRACE("inverse leaf " + std::to_string(inverse_leaf));
+    for (const float coordinate : {0.f, -0.f, 0.4f, -0.4f, 1.f, -1.f, 2.f, -2.f, 1e-30f, -1e-30f,
+                                   -0.2f, 0.2f, 123456.7f, -123456.7f}) {
+      EXPECT_EQ(voxel_index(coordinate, inverse_leaf),
+                static_cast<int64_t>(std::floor(coordinate * inverse_leaf)))
+          << coordinate;
+    }
+  }
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> coordinates(-500.f, 500.f);
+  for (int i = 0; i < 100000; ++i) {
+    const float coordinate = coordinates(rng);
+    ASSERT_EQ(voxel_index(coordinate, 5.0), static_cast<int64_t>(std::floor(coordinate * 5.0)))
+        << coordinate;
+  }
+  EXPECT_EQ(voxel_index(-0.2f, 5.0), -2);  // -0.2f lies just below -0.2
+  EXPECT_EQ(voxel_index(-1.f, 1.0), -1);
+  EXPECT_EQ(voxel_index(-0.5f, 1.0), -1);
+}

@@ -16,8 +16,12 @@ inline uint64_t pack_voxel_key(int64_t x, int64_t y, int64_t z) {
   return bits(x) | bits(y) << 21 | bits(z) << 42;
 }
 
+// floor() by truncation: exactly std::floor for finite coordinates, inline where std::floor is a
+// library call unless the build targets SSE4.1.
 inline int64_t voxel_index(float coordinate, double inverse_leaf) {
-  return static_cast<int64_t>(std::floor(coordinate * inverse_leaf));
+  const double scaled = coordinate * inverse_leaf;
+  const auto truncated = static_cast<int64_t>(scaled);
+  return truncated - (scaled < static_cast<double>(truncated) ? 1 : 0);
 }
 
 // The key of the voxel holding point `p` (anything with x, y, z).
