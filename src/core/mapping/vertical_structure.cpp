@@ -53,9 +53,20 @@ std::vector<Eigen::Vector3d> wall_normals(const Cloud& points, const Eigen::Matr
   std::vector<Moments> patches;
   patch_index.reserve(points.size() / 8);
   patches.reserve(points.size() / 8);
+  // A patch whose whole cube lies below the sensor (in the map frame) has its mean there too and
+  // is no wall: its points (the ground, most of them) need no moments. The cube's highest point
+  // is its corner of smallest coordinates raised by the up axis' positive components.
+  const Eigen::RowVector3d up = rotation.row(2);
+  const double cube_rise = up.cwiseMax(0.0).sum() / kInversePatchSize;
+  constexpr double kBelow = -1e-6;  // m: clear of the rounding of the mean's height
   for (const CloudPoint& p : points) {
+    const int64_t x = voxel_index(p.x, kInversePatchSize), y = voxel_index(p.y, kInversePatchSize),
+                  z = voxel_index(p.z, kInversePatchSize);
+    const Eigen::Vector3d corner(static_cast<double>(x), static_cast<double>(y),
+                                 static_cast<double>(z));
+    if (up.dot(corner) / kInversePatchSize + cube_rise < kBelow) continue;
     bool inserted = false;
-    uint32_t& index = patch_index.find_or_insert(voxel_key(p, kInversePatchSize), &inserted);
+    uint32_t& index = patch_index.find_or_insert(pack_voxel_key(x, y, z), &inserted);
     if (inserted) {
       index = static_cast<uint32_t>(patches.size());
       patches.emplace_back();

@@ -1,6 +1,7 @@
 // The vertical-structure prior's patches: walls found, floors, slanted planes and single rows not.
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <vector>
@@ -101,4 +102,20 @@ TEST(VerticalStructure, AFewPatchesAreNotEnough) {
       add(cloud, {u, 4.5, v});
   }
   EXPECT_TRUE(wall_normals(cloud, Eigen::Matrix3d::Identity(), 10.0).empty());
+}
+
+TEST(VerticalStructure, APatchRisingAboveATiltedSensorCountsThoughItsCubeStartsBelow) {
+  // Twenty patches of a wall at x = 5.5, each in a cube that starts below the sensor (z from -1),
+  // the sensor rolled 40 deg: the first cube's lowest corner lies below the sensor in the map
+  // frame, its points' mean above it. All twenty are walls (twenty, the least that counts).
+  Cloud cloud;
+  for (int k = 0; k < 20; ++k) {
+    for (double y = k + 0.05; y < k + 1.0; y += 0.1) {
+      for (double z = -0.45; z < 0.0; z += 0.1)
+        add(cloud, {5.5, y, z});
+    }
+  }
+  const Eigen::Matrix3d rolled =
+      Eigen::AngleAxisd(40.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  EXPECT_EQ(wall_normals(cloud, rolled, 5.0).size(), 20u);
 }
