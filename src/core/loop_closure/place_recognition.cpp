@@ -10,9 +10,9 @@ double yaw_of(const Eigen::Matrix3d& rotation) {
   return std::atan2(rotation(1, 0), rotation(0, 0));
 }
 
-double squared_distance(const std::vector<float>& a, const std::vector<float>& b) {
+double squared_distance(const float* a, const std::vector<float>& b) {
   double sum = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i)
+  for (std::size_t i = 0; i < b.size(); ++i)
     sum += (a[i] - b[i]) * (a[i] - b[i]);
   return sum;
 }
@@ -38,30 +38,46 @@ PlaceDescriptor PlaceRecognition::describe(const std::vector<const Cloud*>& clou
 }
 
 void PlaceRecognition::add(int keyframe, double stamp, PlaceDescriptor descriptor) {
-  if (descriptor.empty()) return;
-  places_.push_back({keyframe, stamp, std::move(descriptor)});
+  const auto rings = static_cast<std::size_t>(params_.place.rings);
+  if (descriptor.empty() || descriptor.ring_key().size() != rings) return;
+  ring_keys_.insert(ring_keys_.end(), descriptor.ring_key().begin(), descriptor.ring_key().end());
+  keyframes_.push_back(keyframe);
+  stamps_.push_back(stamp);
+  places_.push_back(std::move(descriptor));
 }
 
 void PlaceRecognition::forget(int first, int last) {
-  places_.erase(std::remove_if(places_.begin(), places_.end(),
-                               [&](const Place& place) {
-                                 return place.keyframe >= first && place.keyframe <= last;
-                               }),
-                places_.end());
+  const std::size_t rings = static_cast<std::size_t>(params_.place.rings);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < places_.size(); ++i) {
+    if (keyframes_[i] >= first && keyframes_[i] <= last) continue;
+    if (kept != i) {
+      places_[kept] = std::move(places_[i]);
+      keyframes_[kept] = keyframes_[i];
+      stamps_[kept] = stamps_[i];
+      std::copy_n(&ring_keys_[i * rings], rings, &ring_keys_[kept * rings]);
+    }
+    ++kept;
+  }
+  places_.resize(kept);
+  keyframes_.resize(kept);
+  stamps_.resize(kept);
+  ring_keys_.resize(kept * rings);
 }
 
 std::optional<LoopCandidate> PlaceRecognition::candidate(const std::vector<Keyframe>& keyframes,
                                                          int current) const {
-  if (!params_.place.enabled || places_.empty() || places_.back().keyframe != current) {
+  if (!params_.place.enabled || places_.empty() || keyframes_.back() != current) {
     return std::nullopt;
   }
-  const PlaceDescriptor& place = places_.back().descriptor;
+  const PlaceDescriptor& place = places_.back();
   const double newest_stamp = keyframes.at(current).stamp - params_.min_time_gap;
+  const std::size_t rings = static_cast<std::size_t>(params_.place.rings);
   // The nearest ring keys first: a cheap, rotation-invariant look at every older place.
-  std::vector<std::pair<double, const Place*>> nearest;
-  for (const Place& older : places_) {
-    if (older.stamp > newest_stamp || older.keyframe == current) continue;
-    nearest.emplace_back(squared_distance(older.descriptor.ring_key(), place.ring_key()), &older);
+  std::vector<std::pair<double, std::size_t>> nearest;
+  for (std::size_t i = 0; i < places_.size(); ++i) {
+    if (stamps_[i] > newest_stamp || keyframes_[i] == current) continue;
+    nearest.emplace_back(squared_distance(&ring_keys_[i * rings], place.ring_key()), i);
   }
   const std::size_t compared =
       std::min(nearest.size(), static_cast<std::size_t>(params_.place.candidates));
@@ -70,11 +86,12 @@ std::optional<LoopCandidate> PlaceRecognition::candidate(const std::vector<Keyfr
                       return a.first < b.first || (a.first == b.first && a.second < b.second);
                     });
   // Every compared place's distance, then the best, and the best elsewhere for distinctness.
-  std::vector<std::pair<double, std::pair<const Place*, int>>> compared_places;
+  std::vector<std::pair<double, std::pair<int, int>>> compared_places;  // keyframe, shift
   for (std::size_t i = 0; i < compared; ++i) {
     int shift = 0;
-    const double distance = place.distance(nearest[i].second->descriptor, &shift);
-    compared_places.push_back({distance, {nearest[i].second, shift}});
+    const std::size_t older = nearest[i].second;
+    const double distance = place.distance(places_[older], &shift);
+    compared_places.push_back({distance, {keyframes_[older], shift}});
   }
   const auto best =
       std::min_element(compared_places.begin(), compared_places.end(),
@@ -82,11 +99,10 @@ std::optional<LoopCandidate> PlaceRecognition::candidate(const std::vector<Keyfr
   if (best == compared_places.end() || best->first > params_.place.max_distance) {
     return std::nullopt;
   }
-  const Keyframe& matched = keyframes.at(best->second.first->keyframe);
+  const Keyframe& matched = keyframes.at(best->second.first);
   for (const auto& [distance, other] : compared_places) {
     const double apart =
-        (keyframes.at(other.first->keyframe).pose.translation() - matched.pose.translation())
-            .norm();
+        (keyframes.at(other.first).pose.translation() - matched.pose.translation()).norm();
     if (apart > params_.place.elsewhere_distance &&
         best->first > params_.place.max_ratio * distance) {
       return std::nullopt;  // as good a match elsewhere: no telling which place this is
@@ -94,7 +110,7 @@ std::optional<LoopCandidate> PlaceRecognition::candidate(const std::vector<Keyfr
   }
   const Keyframe& now = keyframes.at(current);
   LoopCandidate candidate;
-  candidate.matched_index = best->second.first->keyframe;
+  candidate.matched_index = best->second.first;
   candidate.source = CandidateSource::kPlace;
   candidate.place_distance = best->first;
   // At the matched keyframe, turned by the relative yaw, with the current roll and pitch.
@@ -107,9 +123,11 @@ std::optional<LoopCandidate> PlaceRecognition::candidate(const std::vector<Keyfr
 }
 
 std::size_t PlaceRecognition::bytes() const {
-  std::size_t total = places_.capacity() * sizeof(Place);
-  for (const Place& place : places_)
-    total += place.descriptor.bytes();
+  std::size_t total = places_.capacity() * sizeof(PlaceDescriptor) +
+                      keyframes_.capacity() * sizeof(int) + stamps_.capacity() * sizeof(double) +
+                      ring_keys_.capacity() * sizeof(float);
+  for (const PlaceDescriptor& place : places_)
+    total += place.bytes();
   return total;
 }
 

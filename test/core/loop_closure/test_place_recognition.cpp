@@ -78,3 +78,26 @@ TEST(PlaceRecognition, RecentPlacesAndForgottenOnesAreNoCandidates) {
   EXPECT_FALSE(square.places.candidate(square.keyframes, 39));
   EXPECT_FALSE(square.places.candidate(square.keyframes, 20)) << "its place was not added last";
 }
+
+TEST(PlaceRecognition, ForgottenPlacesLeaveTheOthersTheirOwnKeys) {
+  // Each keyframe sees one post of its own, at a range that tells it apart (beyond 20 m none);
+  // keyframe 39 sees keyframe 7's. With the places of 2-5 forgotten, and only the nearest ring key
+  // compared in full, the candidate is still keyframe 7.
+  LoopClosureParams params = params_for_this_scene();
+  params.place.candidates = 1;
+  const DriftedSquare square(planar(-12.0, 9.0, 20.0));  // the keyframes' stamps and poses
+  PlaceRecognition places(params);
+  for (int k = 0; k < 40; ++k) {
+    Cloud post;
+    for (double z = 0.0; z < 3.0; z += 0.1) {
+      CloudPoint point;
+      point.getVector3fMap() = Eigen::Vector3f(1.5f + (k == 39 ? 7 : k), 0.f, float(z));
+      post.push_back(point);
+    }
+    places.add(k, square.keyframes[k].stamp, places.describe({&post}, square.keyframes[k].pose));
+  }
+  places.forget(2, 5);
+  const std::optional<LoopCandidate> candidate = places.candidate(square.keyframes, 39);
+  ASSERT_TRUE(candidate);
+  EXPECT_EQ(candidate->matched_index, 7);
+}

@@ -40,13 +40,13 @@ class PlaceRecognition {
   std::size_t bytes() const;
 
  private:
-  struct Place {
-    int keyframe;
-    double stamp;
-    PlaceDescriptor descriptor;
-  };
   LoopClosureParams params_;
-  std::vector<Place> places_;  // by keyframe index
+  // The places by keyframe index, one entry each in every array. The ring keys lie back to back
+  // (params_.place.rings each): every new keyframe reads all of them.
+  std::vector<PlaceDescriptor> places_;
+  std::vector<int> keyframes_;
+  std::vector<double> stamps_;
+  std::vector<float> ring_keys_;
 };
 
 }  // namespace adaptive_lego_loam
