@@ -183,9 +183,12 @@ struct LoopDetectionJob::Work {
   Eigen::Isometry3d guess, matched_pose;
   std::unique_ptr<SteppedIcp> icp;
   Keyframe current;  // as when the job began
-  // Refining: the candidate's map as mapping's, and where ICP put the keyframe.
+  // Refining: the candidate's map as mapping's, where ICP put the keyframe, and the match (of the
+  // keyframe's sampled points, kept here for it) from there.
   std::optional<LocalMap> refinement_map;
   Eigen::Isometry3d icp_pose;
+  Cloud refinement_corners, refinement_surfaces;
+  std::unique_ptr<SteppedMapMatch> refinement;
 };
 
 LoopDetectionJob::LoopDetectionJob(const std::vector<Keyframe>& keyframes, int current_index,
@@ -363,16 +366,26 @@ void LoopDetectionJob::add_to_refinement_map() {
 }
 
 // The current keyframe's corners and surfaces, every n-th, at most icp_max_points in all, matched
-// from ICP's pose. All of them, not only those ICP aligned: the match leaves out points without
-// a line or plane of the map near them, and what is farther adds to the constraints.
+// from ICP's pose, icp_iterations_per_scan iterations a step. All of them, not only those ICP
+// aligned: the match leaves out points without a line or plane of the map near them, and what is
+// farther adds to the constraints.
 void LoopDetectionJob::refine() {
   Work& work = *work_;
-  const CloudPtr corners = work.current.corners->unpack();
-  const CloudPtr surfaces = work.current.surfaces->unpack();
-  const std::size_t step = sample_step(corners->size() + surfaces->size(), params_.icp_max_points);
-  const MapMatchResult match = ScanToMapMatcher(*refinement_)
-                                   .match(every_nth(*corners, step), every_nth(*surfaces, step),
-                                          *work.refinement_map, work.icp_pose);
+  if (!work.refinement) {
+    const CloudPtr corners = work.current.corners->unpack();
+    const CloudPtr surfaces = work.current.surfaces->unpack();
+    const std::size_t step =
+        sample_step(corners->size() + surfaces->size(), params_.icp_max_points);
+    work.refinement_corners = every_nth(*corners, step);
+    work.refinement_surfaces = every_nth(*surfaces, step);
+    work.refinement = std::make_unique<SteppedMapMatch>(*refinement_, work.refinement_corners,
+                                                        work.refinement_surfaces,
+                                                        *work.refinement_map, work.icp_pose);
+  }
+  for (int piece = 0; piece < params_.icp_iterations_per_scan && !work.refinement->done(); ++piece)
+    work.refinement->iterate();
+  if (!work.refinement->done()) return;
+  const MapMatchResult match = work.refinement->result();
   if (!match.matched) {
     accept(work.icp_pose);
     return;

@@ -198,100 +198,160 @@ Eigen::Matrix<double, 6, 6> normal_matrix(ceres::Problem& problem, double* rotat
 
 }  // namespace
 
+struct SteppedMapMatch::State {
+  State(const MappingParams& params, const Cloud& corners, const Cloud& surfaces,
+        const LocalMap& map, const Eigen::Isometry3d& guess,
+        const std::optional<WeakDirectionPrior>& prior)
+      : params(params),
+        map(map),
+        prior(prior),
+        guess(guess),
+        placed_guess(map.to_placement() * guess),
+        rotation(placed_guess.linear()),
+        translation(placed_guess.translation()),
+        lines(corners, map.corner_map(), fit_line,
+              static_cast<float>(params.keep_correspondence_distance)),
+        planes(surfaces, map.surface_map(), fit_plane,
+               static_cast<float>(params.keep_correspondence_distance)) {}
+
+  // Returns whether the match goes on.
+  bool iterate();
+  // LOAM's degeneracy test on the first iteration's problem: directions whose eigenvalue of J^T J
+  // is small get no update.
+  void find_degenerate_directions(ceres::Problem& problem, double* q, double* t);
+
+  MappingParams params;
+  const LocalMap& map;
+  std::optional<WeakDirectionPrior> prior;
+  Eigen::Isometry3d guess, placed_guess;  // the latter in the frame the map's points are in
+  Eigen::Quaterniond rotation;
+  Eigen::Vector3d translation;
+  Eigen::Matrix<double, 6, 6> keep = Eigen::Matrix<double, 6, 6>::Identity();
+  Correspondences matches;
+  ceres::EigenQuaternionManifold quaternion_manifold;
+  CorrespondenceCache<LineMatch> lines;
+  CorrespondenceCache<PlaneMatch> planes;
+  std::unique_ptr<ceres::CostFunction> walls_cost;
+  MapMatchResult result;
+  int iteration = 0;
+  bool done = false;
+};
+
+void SteppedMapMatch::State::find_degenerate_directions(ceres::Problem& problem, double* q,
+                                                        double* t) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(normal_matrix(problem, q, t));
+  result.smallest_eigenvalue = solver.eigenvalues()(0);
+  Eigen::Matrix<double, 6, 6> projector = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int k = 0; k < 6; ++k) {
+    const Eigen::Matrix<double, 6, 1> v = solver.eigenvectors().col(k);
+    if (solver.eigenvalues()(k) < params.degeneracy_eigenvalue) {
+      ++result.degenerate_directions;
+    } else {
+      projector += v * v.transpose();
+    }
+  }
+  keep = projector;
+}
+
+bool SteppedMapMatch::State::iterate() {
+  const Eigen::Matrix3d rotation_matrix = rotation.toRotationMatrix();
+  lines.update(rotation_matrix, translation, matches.lines);
+  planes.update(rotation_matrix, translation, matches.planes);
+  result.edge_matches = static_cast<int>(matches.lines.size());
+  result.plane_matches = static_cast<int>(matches.planes.size());
+  if (result.edge_matches + result.plane_matches < kMinMatches) return false;
+
+  double q[4] = {rotation.x(), rotation.y(), rotation.z(), rotation.w()};
+  double t[3] = {translation.x(), translation.y(), translation.z()};
+  QuaternionRegistrationCost cost(matches, params.huber_loss);
+  std::unique_ptr<ceres::CostFunction> prior_cost;
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  problem.AddParameterBlock(q, 4, &quaternion_manifold);
+  problem.AddParameterBlock(t, 3);
+  problem.AddResidualBlock(&cost, nullptr, q, t);
+  if (walls_cost) problem.AddResidualBlock(walls_cost.get(), nullptr, q);
+  if (prior && prior->weight > 0.0) {
+    prior_cost.reset(new ceres::AutoDiffCostFunction<DirectionPrior, 1, 3>(new DirectionPrior{
+        placed_guess.linear() * prior->direction, placed_guess.translation(), prior->weight}));
+    problem.AddResidualBlock(prior_cost.get(), nullptr, t);
+  }
+  if (iteration == 0) find_degenerate_directions(problem, q, t);
+  const double q_before[4] = {q[0], q[1], q[2], q[3]};
+  const double t_before[3] = {t[0], t[1], t[2]};
+  ceres::Solver::Summary summary;
+  ceres::Solve(registration_solver_options(params.solver_iterations), &problem, &summary);
+
+  // The step, in the tangent space, with its degenerate part removed.
+  Eigen::Matrix<double, 6, 1> step;
+  quaternion_manifold.Minus(q, q_before, step.data());
+  step.tail<3>() = Eigen::Vector3d(t[0] - t_before[0], t[1] - t_before[1], t[2] - t_before[2]);
+  if (result.degenerate_directions > 0) step = keep * step;
+  double q_after[4];
+  quaternion_manifold.Plus(q_before, step.data(), q_after);
+  rotation = Eigen::Quaterniond(q_after[3], q_after[0], q_after[1], q_after[2]).normalized();
+  translation = Eigen::Vector3d(t_before[0], t_before[1], t_before[2]) + step.tail<3>();
+  result.iterations = iteration + 1;
+  result.matched = true;
+  const bool converged =
+      iteration >= 1 && step.head<3>().norm() < 5e-5 && step.tail<3>().norm() < 1e-3;
+  ++iteration;
+  return !converged && iteration < params.max_iterations;
+}
+
+SteppedMapMatch::SteppedMapMatch(const MappingParams& params, const Cloud& corners,
+                                 const Cloud& surfaces, const LocalMap& map,
+                                 const Eigen::Isometry3d& guess,
+                                 const std::optional<WeakDirectionPrior>& prior,
+                                 const std::vector<Eigen::Vector3d>& wall_normals)
+    : state_(std::make_unique<State>(params, corners, surfaces, map, guess, prior)) {
+  State& state = *state_;
+  state.done = map.empty() || params.max_iterations <= 0;
+  // The vertical-structure prior, in the frame the map's points are in (the map frame's up moves
+  // with it while placing again).
+  if (!state.done && params.vertical_prior_weight > 0.0 && !wall_normals.empty()) {
+    state.walls_cost =
+        vertical_walls_cost(wall_normals, state.placed_guess.linear(),
+                            map.to_placement().linear() * Eigen::Vector3d::UnitZ(),
+                            params.vertical_prior_weight, params.vertical_prior_max_tilt_deg);
+  }
+}
+
+SteppedMapMatch::~SteppedMapMatch() = default;
+
+bool SteppedMapMatch::done() const {
+  return state_->done;
+}
+
+void SteppedMapMatch::iterate() {
+  if (!state_->done) state_->done = !state_->iterate();
+}
+
+MapMatchResult SteppedMapMatch::result() const {
+  const State& state = *state_;
+  MapMatchResult result = state.result;
+  result.pose = state.guess;
+  if (result.matched) {
+    Eigen::Isometry3d placed_pose = Eigen::Isometry3d::Identity();
+    placed_pose.linear() = state.rotation.toRotationMatrix();
+    placed_pose.translation() = state.translation;
+    result.pose = state.map.to_placement().inverse() * placed_pose;
+  }
+  return result;
+}
+
 ScanToMapMatcher::ScanToMapMatcher(const MappingParams& params) : params_(params) {}
 
 MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfaces,
                                        const LocalMap& map, const Eigen::Isometry3d& guess,
                                        const std::optional<WeakDirectionPrior>& prior,
                                        const std::vector<Eigen::Vector3d>& wall_normals) const {
-  MapMatchResult result;
-  result.pose = guess;
-  if (map.empty()) return result;
-  // Matched in the frame the map's points are in; the result goes back to the map frame.
-  const Eigen::Isometry3d placed_guess = map.to_placement() * guess;
-  Eigen::Quaterniond rotation(placed_guess.linear());
-  Eigen::Vector3d translation = placed_guess.translation();
-  Eigen::Matrix<double, 6, 6> keep = Eigen::Matrix<double, 6, 6>::Identity();
-  Correspondences matches;
-  ceres::EigenQuaternionManifold quaternion_manifold;
-  const float keep_distance = static_cast<float>(params_.keep_correspondence_distance);
-  CorrespondenceCache<LineMatch> lines(corners, map.corner_map(), fit_line, keep_distance);
-  CorrespondenceCache<PlaneMatch> planes(surfaces, map.surface_map(), fit_plane, keep_distance);
-  // The vertical-structure prior, in the frame the map's points are in (the map frame's up moves
-  // with it while placing again).
-  std::unique_ptr<ceres::CostFunction> walls_cost;
-  if (params_.vertical_prior_weight > 0.0 && !wall_normals.empty()) {
-    walls_cost = vertical_walls_cost(
-        wall_normals, placed_guess.linear(), map.to_placement().linear() * Eigen::Vector3d::UnitZ(),
-        params_.vertical_prior_weight, params_.vertical_prior_max_tilt_deg);
-  }
-
-  for (int iteration = 0; iteration < params_.max_iterations; ++iteration) {
-    const Eigen::Matrix3d rotation_matrix = rotation.toRotationMatrix();
-    lines.update(rotation_matrix, translation, matches.lines);
-    planes.update(rotation_matrix, translation, matches.planes);
-    result.edge_matches = static_cast<int>(matches.lines.size());
-    result.plane_matches = static_cast<int>(matches.planes.size());
-    if (result.edge_matches + result.plane_matches < kMinMatches) break;
-
-    double q[4] = {rotation.x(), rotation.y(), rotation.z(), rotation.w()};
-    double t[3] = {translation.x(), translation.y(), translation.z()};
-    QuaternionRegistrationCost cost(matches, params_.huber_loss);
-    std::unique_ptr<ceres::CostFunction> prior_cost;
-    ceres::Problem::Options problem_options;
-    problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    ceres::Problem problem(problem_options);
-    problem.AddParameterBlock(q, 4, &quaternion_manifold);
-    problem.AddParameterBlock(t, 3);
-    problem.AddResidualBlock(&cost, nullptr, q, t);
-    if (walls_cost) problem.AddResidualBlock(walls_cost.get(), nullptr, q);
-    if (prior && prior->weight > 0.0) {
-      prior_cost.reset(new ceres::AutoDiffCostFunction<DirectionPrior, 1, 3>(new DirectionPrior{
-          placed_guess.linear() * prior->direction, placed_guess.translation(), prior->weight}));
-      problem.AddResidualBlock(prior_cost.get(), nullptr, t);
-    }
-    if (iteration == 0) {
-      // LOAM's degeneracy test: directions whose eigenvalue of J^T J is small get no update.
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(
-          normal_matrix(problem, q, t));
-      result.smallest_eigenvalue = solver.eigenvalues()(0);
-      Eigen::Matrix<double, 6, 6> projector = Eigen::Matrix<double, 6, 6>::Zero();
-      for (int k = 0; k < 6; ++k) {
-        const Eigen::Matrix<double, 6, 1> v = solver.eigenvectors().col(k);
-        if (solver.eigenvalues()(k) < params_.degeneracy_eigenvalue) {
-          ++result.degenerate_directions;
-        } else {
-          projector += v * v.transpose();
-        }
-      }
-      keep = projector;
-    }
-    const double q_before[4] = {q[0], q[1], q[2], q[3]};
-    const double t_before[3] = {t[0], t[1], t[2]};
-    ceres::Solver::Summary summary;
-    ceres::Solve(registration_solver_options(params_.solver_iterations), &problem, &summary);
-
-    // The step, in the tangent space, with its degenerate part removed.
-    Eigen::Matrix<double, 6, 1> step;
-    quaternion_manifold.Minus(q, q_before, step.data());
-    step.tail<3>() = Eigen::Vector3d(t[0] - t_before[0], t[1] - t_before[1], t[2] - t_before[2]);
-    if (result.degenerate_directions > 0) step = keep * step;
-    double q_after[4];
-    quaternion_manifold.Plus(q_before, step.data(), q_after);
-    rotation = Eigen::Quaterniond(q_after[3], q_after[0], q_after[1], q_after[2]).normalized();
-    translation = Eigen::Vector3d(t_before[0], t_before[1], t_before[2]) + step.tail<3>();
-    result.iterations = iteration + 1;
-    result.matched = true;
-    if (iteration >= 1 && step.head<3>().norm() < 5e-5 && step.tail<3>().norm() < 1e-3) break;
-  }
-  if (result.matched) {
-    Eigen::Isometry3d placed_pose = Eigen::Isometry3d::Identity();
-    placed_pose.linear() = rotation.toRotationMatrix();
-    placed_pose.translation() = translation;
-    result.pose = map.to_placement().inverse() * placed_pose;
-  }
-  return result;
+  SteppedMapMatch match(params_, corners, surfaces, map, guess, prior, wall_normals);
+  while (!match.done())
+    match.iterate();
+  return match.result();
 }
 
 }  // namespace adaptive_lego_loam

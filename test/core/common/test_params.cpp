@@ -125,8 +125,8 @@ TEST(Params, LoopClosureSection) {
   EXPECT_DOUBLE_EQ(shipped.loop_closure.min_inlier_ratio, 0.95);
   EXPECT_EQ(shipped.loop_closure.consistency_window, 30);
   EXPECT_EQ(shipped.loop_closure.robust_loss, RobustLoss::kCauchy);
-  EXPECT_EQ(shipped.loop_closure.map_points_per_scan, 20000);
-  EXPECT_EQ(shipped.loop_closure.icp_iterations_per_scan, 2);
+  EXPECT_EQ(shipped.loop_closure.map_points_per_scan, 10000);
+  EXPECT_EQ(shipped.loop_closure.icp_iterations_per_scan, 1);
   EXPECT_EQ(shipped.loop_closure.graph_iterations_per_scan, 1);
 
   const Config config = parse_config(std::string(kMinimal) +

@@ -114,3 +114,51 @@ TEST(ScanToMap, TheVerticalPriorKeepsWallsUprightAgainstATiltedMap) {
   ASSERT_TRUE(held.matched);
   EXPECT_LT(roll_deg(held), 0.5);
 }
+
+// A loop's refinement spreads the match over scans: an iteration at a time, it ends exactly where
+// the whole match does.
+TEST(ScanToMap, AMatchAnIterationAtATimeEndsWhereTheWholeMatchDoes) {
+  const MappingParams params = one_keyframe_params();
+  LocalMap map(params);
+  map.update({room_keyframe()}, Eigen::Vector3d::Zero());
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  truth.translation() = Eigen::Vector3d(0.5, 0.2, 0.0);
+  const CloudPtr scan = voxel_filter(*transform_cloud(*room_corner(), truth.inverse()), 0.3);
+  Eigen::Isometry3d guess = truth;
+  guess.translation() += Eigen::Vector3d(0.15, -0.1, 0.05);
+  const MapMatchResult whole = ScanToMapMatcher(params).match(Cloud(), *scan, map, guess);
+  ASSERT_TRUE(whole.matched);
+  ASSERT_GE(whole.iterations, 2);
+
+  const Cloud no_corners;  // referenced by the match: it must outlive it
+  SteppedMapMatch stepped(params, no_corners, *scan, map, guess);
+  EXPECT_FALSE(stepped.result().matched);
+  EXPECT_EQ(stepped.result().pose.matrix(), guess.matrix());
+  int iterations = 0;
+  while (!stepped.done()) {
+    stepped.iterate();
+    ++iterations;
+    EXPECT_EQ(stepped.result().iterations, iterations);
+    ASSERT_LE(iterations, params.max_iterations);
+  }
+  stepped.iterate();  // done: nothing more
+  const MapMatchResult result = stepped.result();
+  EXPECT_EQ(iterations, whole.iterations);
+  EXPECT_EQ(result.pose.matrix(), whole.pose.matrix());
+  EXPECT_EQ(result.plane_matches, whole.plane_matches);
+  EXPECT_EQ(result.smallest_eigenvalue, whole.smallest_eigenvalue);
+  EXPECT_LT((result.pose.translation() - truth.translation()).norm(), 0.01);
+}
+
+TEST(ScanToMap, AMatchOnAnEmptyMapIsDoneAtOnceAtTheGuess) {
+  const MappingParams params = one_keyframe_params();
+  const LocalMap map(params);
+  Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
+  guess.translation() = Eigen::Vector3d(1.0, 2.0, 3.0);
+  const Cloud no_corners;
+  const CloudPtr surfaces = room_corner();
+  const SteppedMapMatch stepped(params, no_corners, *surfaces, map, guess);
+  EXPECT_TRUE(stepped.done());
+  EXPECT_FALSE(stepped.result().matched);
+  EXPECT_EQ(stepped.result().pose.matrix(), guess.matrix());
+}

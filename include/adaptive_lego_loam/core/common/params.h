@@ -255,7 +255,8 @@ struct LoopClosureParams {
   // it; each scan does the next of these pieces (or the voxel filter, or the KD-tree). The
   // detection does not depend on their size.
   int map_points_per_scan = 20000;    // keyframe points placed into the candidate's map
-  int icp_iterations_per_scan = 2;    // ICP iterations (the final fitness counts as one)
+  int icp_iterations_per_scan = 2;    // ICP iterations (the final fitness counts as one), then
+                                      // the refinement's match iterations
   int graph_iterations_per_scan = 1;  // pose-graph solver iterations, once the loop is accepted
   // A solver iteration's cost grows with the nodes: past this many keyframes the loop is
   // optimised over a subset of them (see reduce_graph), so that a long run's iteration stays

@@ -105,9 +105,9 @@ bool within_drift_bound(const std::vector<Keyframe>& keyframes, const LoopDetect
 // detect_loop in bounded steps: the candidate's map a few keyframes at a time
 // (params.map_points_per_scan), its voxel filter, its KD-tree, then params.icp_iterations_per_scan
 // ICP iterations a step, the fitness taking the place of the last; refining an accepted loop, the
-// refinement's map a few keyframes at a time again, then the match in one step. Any step sizes give
-// detect_loop's detection bit for bit: ICP resumes exactly where it stopped (an iteration at a
-// time, from the cloud the last one left). The keyframes are read when the job is made: their
+// refinement's map a few keyframes at a time again, then as many iterations of the match a step.
+// Any step sizes give detect_loop's detection bit for bit: ICP and the match resume exactly where
+// they stopped (an iteration at a time). The keyframes are read when the job is made: their
 // poses as they are then (their clouds are shared, not copied).
 class LoopDetectionJob {
  public:

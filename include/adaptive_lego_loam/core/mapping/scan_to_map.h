@@ -4,6 +4,7 @@
 // directions of the normal equations (LOAM's eigenvalue test) receive no update.
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -28,6 +29,31 @@ struct MapMatchResult {
 struct WeakDirectionPrior {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
   double weight = 0.0;
+};
+
+// One match an iteration (a correspondence search and a solve) at a time, for work spread over
+// scans: iterated until done, it gives ScanToMapMatcher::match's result bit for bit. The clouds
+// and the map are referenced, not copied: they must outlive it.
+class SteppedMapMatch {
+ public:
+  SteppedMapMatch(const MappingParams& params, const Cloud& corners, const Cloud& surfaces,
+                  const LocalMap& map, const Eigen::Isometry3d& guess,
+                  const std::optional<WeakDirectionPrior>& prior = std::nullopt,
+                  const std::vector<Eigen::Vector3d>& wall_normals = {});
+  ~SteppedMapMatch();
+  SteppedMapMatch(const SteppedMapMatch&) = delete;
+  SteppedMapMatch& operator=(const SteppedMapMatch&) = delete;
+
+  // Converged, out of iterations or of correspondences (an empty map: done at once).
+  bool done() const;
+  // One iteration; nothing once done.
+  void iterate();
+  // So far: the pose after the last iteration, the guess before any.
+  MapMatchResult result() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
 };
 
 class ScanToMapMatcher {
