@@ -110,7 +110,8 @@ void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {
 
   result.degeneration = degeneration_from_normals(result.normals);
   if (result.degeneration.valid) {
-    const double raw = result.degeneration.mu;
+    const double raw = mu_with_evidence(result.degeneration.mu, result.degeneration.normals,
+                                        ambient.mu_evidence_normals);
     const double smoothing = has_previous_ ? ambient.mu_smoothing : 0.0;
     result.mu = smoothing * previous_mu_ + (1.0 - smoothing) * raw;
     result.beta0_deg = beta0_from_mu(result.mu, ambient.beta0_min_deg, ambient.beta0_max_deg);

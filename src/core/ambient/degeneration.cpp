@@ -40,6 +40,12 @@ Degeneration degeneration_from_normals(const std::vector<NormalFeature>& normals
   return result;
 }
 
+double mu_with_evidence(double mu, int normals, int evidence_normals) {
+  if (evidence_normals <= 0 || normals >= evidence_normals) return mu;
+  const double share = static_cast<double>(std::max(normals, 0)) / evidence_normals;
+  return 1.0 - (1.0 - mu) * share;
+}
+
 double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg) {
   return mu * (beta0_min_deg - beta0_max_deg) + beta0_max_deg;
 }

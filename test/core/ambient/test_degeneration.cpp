@@ -70,3 +70,27 @@ TEST(Degeneration, HandMadeNormals) {
   EXPECT_DOUBLE_EQ(beta0_from_mu(0.0, 10, 60), 60.0);
   EXPECT_DOUBLE_EQ(beta0_from_mu(0.5, 10, 60), 35.0);
 }
+
+TEST(Degeneration, FewNormalsPullMuTowardDegenerate) {
+  EXPECT_DOUBLE_EQ(mu_with_evidence(0.2, 50, 200), 0.8);  // a quarter of the evidence
+  EXPECT_DOUBLE_EQ(mu_with_evidence(0.2, 0, 200), 1.0);
+  EXPECT_DOUBLE_EQ(mu_with_evidence(0.2, 200, 200), 0.2);
+  EXPECT_DOUBLE_EQ(mu_with_evidence(0.2, 5000, 200), 0.2);
+  EXPECT_DOUBLE_EQ(mu_with_evidence(0.2, 50, 0), 0.2);  // off
+}
+
+// A well-constrained room seen through fewer normals than the evidence asks for keeps more
+// points: its mu comes from too little structure to trust.
+TEST(Degeneration, AWellConstrainedSceneWithLittleEvidenceGetsTheLenientEnd) {
+  Config config = synthetic_config();
+  const auto scan = test::render(config.sensor, box_room());
+  const AmbientFilterResult trusted = filter(config, scan);
+  ASSERT_TRUE(trusted.degeneration.valid);
+  ASSERT_LE(trusted.mu, 0.3);
+
+  config.ambient.mu_evidence_normals = 4 * trusted.degeneration.normals;
+  const AmbientFilterResult doubted = filter(config, scan);
+  EXPECT_EQ(doubted.degeneration.normals, trusted.degeneration.normals);
+  EXPECT_NEAR(doubted.mu, 1.0 - (1.0 - trusted.mu) / 4.0, 1e-12);
+  EXPECT_LT(doubted.beta0_deg, trusted.beta0_deg - 20.0);
+}

@@ -23,6 +23,11 @@ struct Degeneration {
 // centred covariance) gives the eigenbasis; k = sum |x'_i| / sum |y'_i|; mu = 1 - 1/k.
 Degeneration degeneration_from_normals(const std::vector<NormalFeature>& normals);
 
+// mu weighed by the evidence behind it: with fewer than `evidence_normals` skeleton normals it is
+// pulled toward 1 in proportion (little structure constrains little), mu' = 1 - (1 - mu) *
+// normals / evidence_normals; unchanged with as many or more, or when evidence_normals is 0.
+double mu_with_evidence(double mu, int normals, int evidence_normals);
+
 // beta0 = mu (beta0_min - beta0_max) + beta0_max: a degenerate scene gets the lenient threshold.
 double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg);
 

@@ -88,6 +88,8 @@ struct AmbientFilterParams {
   double normal_depth_threshold = 1.0;  // depth_0, m
   int normal_min_neighbors = 5;         // t_0
   uint32_t seed = 1;
+  // Step 7: below this many skeleton normals mu is pulled toward 1 in proportion; 0 = never.
+  int mu_evidence_normals = 0;
   // Step 8: exponential smoothing of mu over scans; 0 = none.
   double mu_smoothing = 0.0;
 };
