@@ -44,7 +44,7 @@ def cpu_seconds(pid):
 
 
 def graph_processes():
-    """pid -> name of the stage processes (nodes, or the nodelet manager and its loaders)."""
+    """pid -> name of the stage processes (the nodes, or the nodelet graph's managers)."""
     found = {}
     for pid in os.listdir("/proc"):
         if not pid.isdigit():
@@ -60,7 +60,7 @@ def graph_processes():
         program = os.path.basename(text[0])
         names = [a.split(":=", 1)[1] for a in text if a.startswith("__name:=")]
         if program in ("image_projection", "feature_association", "map_optimization",
-                       "transform_fusion", "nodelet") and names:
+                       "transform_fusion", "graph_manager") and names:
             found[int(pid)] = names[0]
     return found
 

@@ -532,6 +532,33 @@ TEST(NodeStartUp, UnknownSensorNameListsTheKnownOnes) {
   EXPECT_NE(output.find("hdl32, hdl64e, kitti, kitti_16rings, vlp16"), std::string::npos) << output;
 }
 
+// graph_manager (nodes.launch nodelets:=true) fails as the node does, with the loader's words.
+TEST(GraphManagerStartUp, BadConfigStopsTheManagerWithTheLoadersMessage) {
+  const fs::path bad =
+      fs::temp_directory_path() / ("alego_bad_" + std::to_string(::getpid()) + ".yaml");
+  std::ofstream(bad) << "sensor:\n  rows: -3\n";
+  // The stage is loaded as <manager's namespace>/image_projection and reads its parameters there.
+  ros::param::set("/bad_graph/image_projection/config", bad.string());
+  const auto [status, output] = run_node_binary(
+      "graph_manager", "__ns:=/bad_graph __name:=bad_manager _stages:=image_projection");
+  fs::remove(bad);
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find("-3 is out of range: expected an integer in [1, 512]"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("could not load image_projection"), std::string::npos) << output;
+}
+
+TEST(GraphManagerStartUp, UnknownStageListsTheKnownOnes) {
+  const auto [status, output] = run_node_binary(
+      "graph_manager", "__name:=bad_stages_manager \"_stages:=image_projection mapping\"");
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find("unknown stage 'mapping'"), std::string::npos) << output;
+  EXPECT_NE(output.find("image_projection, feature_association, map_optimization or "
+                        "transform_fusion"),
+            std::string::npos)
+      << output;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
