@@ -7,6 +7,7 @@
 #include <ros/ros.h>
 
 #include <array>
+#include <cstddef>
 #include <exception>
 #include <sstream>
 #include <string>
@@ -36,13 +37,21 @@ std::vector<std::string> split_words(const std::string& text) {
   return words;
 }
 
+// "a, b, c or d": the stage names of kStageClasses, for error messages.
+std::string stage_names() {
+  std::string names;
+  for (std::size_t i = 0; i < kStageClasses.size(); ++i) {
+    if (i > 0) names += i + 1 < kStageClasses.size() ? ", " : " or ";
+    names += kStageClasses[i].first;
+  }
+  return names;
+}
+
 bool known_stages(const std::vector<std::string>& stages) {
   for (const std::string& stage : stages) {
     if (nodelet_class(stage) != nullptr) continue;
-    ROS_FATAL(
-        "%s: ~stages: unknown stage '%s' (expected image_projection, feature_association, "
-        "map_optimization or transform_fusion)",
-        ros::this_node::getName().c_str(), stage.c_str());
+    ROS_FATAL("%s: ~stages: unknown stage '%s' (expected %s)", ros::this_node::getName().c_str(),
+              stage.c_str(), stage_names().c_str());
     return false;
   }
   return true;
