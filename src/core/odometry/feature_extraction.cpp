@@ -21,19 +21,15 @@ void FeatureSet::clear() {
 
 FeatureExtractor::FeatureExtractor(const FeatureParams& params) : params_(params) {}
 
-void FeatureExtractor::compute_smoothness(const SegmentedCloud& cloud) {
+void FeatureExtractor::compute_curvature(const SegmentedCloud& cloud) {
   const std::vector<float>& range = cloud.info.range;
   const int size = static_cast<int>(range.size());
-  smoothness_.resize(size);
   curvature_.assign(size, 0.f);
-  for (int i = 0; i < size; ++i)
-    smoothness_[i] = {0.f, i};
   for (int i = kNeighbours; i + kNeighbours < size; ++i) {
     float difference = -2.f * kNeighbours * range[i];
     for (int j = 1; j <= kNeighbours; ++j)
       difference += range[i - j] + range[i + j];
     curvature_[i] = difference * difference;
-    smoothness_[i] = {curvature_[i], i};
   }
 }
 
@@ -85,18 +81,27 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
     const int last =
         (start * (params_.sectors - 1 - sector) + end * (sector + 1)) / params_.sectors - 1;
     if (last <= first) continue;
-    auto begin = smoothness_.begin() + first, finish = smoothness_.begin() + last + 1;
-    // Stable, with the index as tie-break: equal curvatures pick the same points every run.
-    std::sort(begin, finish, [](const Smoothness& a, const Smoothness& b) {
+    edge_candidates_.clear();
+    flat_candidates_.clear();
+    for (int i = first; i <= last; ++i) {
+      if (cloud.info.ground_flag[i]) {
+        if (curvature_[i] < params_.surface_threshold)
+          flat_candidates_.push_back({curvature_[i], i});
+      } else if (curvature_[i] > params_.edge_threshold) {
+        edge_candidates_.push_back({curvature_[i], i});
+      }
+    }
+    // The index breaks ties: equal curvatures pick the same points every run.
+    auto by_curvature = [](const Smoothness& a, const Smoothness& b) {
       return a.value < b.value || (a.value == b.value && a.index < b.index);
-    });
+    };
+    std::sort(edge_candidates_.begin(), edge_candidates_.end(), by_curvature);
+    std::sort(flat_candidates_.begin(), flat_candidates_.end(), by_curvature);
 
     int edges = 0;
-    for (auto it = finish; it != begin;) {
-      const int i = (--it)->index;
-      if (picked_[i] || curvature_[i] <= params_.edge_threshold || cloud.info.ground_flag[i]) {
-        continue;
-      }
+    for (auto it = edge_candidates_.rbegin(); it != edge_candidates_.rend(); ++it) {
+      const int i = it->index;
+      if (picked_[i]) continue;
       if (++edges > params_.less_sharp_per_sector) break;
       label_[i] = edges <= params_.sharp_per_sector ? 2 : 1;
       if (label_[i] == 2) out.sharp->push_back(to_cloud_point(points[i], static_cast<float>(row)));
@@ -105,11 +110,9 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
     }
 
     int flats = 0;
-    for (auto it = begin; it != finish; ++it) {
-      const int i = it->index;
-      if (picked_[i] || curvature_[i] >= params_.surface_threshold || !cloud.info.ground_flag[i]) {
-        continue;
-      }
+    for (const Smoothness& candidate : flat_candidates_) {
+      const int i = candidate.index;
+      if (picked_[i]) continue;
       label_[i] = -1;
       out.flat->push_back(to_cloud_point(points[i], static_cast<float>(row)));
       block_neighbours(cloud, i);
@@ -129,7 +132,7 @@ void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<Sc
   // Room for as many as the last scan had: the cloud grows row by row, and each reallocation
   // of a large block costs fresh pages.
   out.less_flat->reserve(less_flat_capacity_);
-  compute_smoothness(cloud);
+  compute_curvature(cloud);
   mark_unreliable(cloud);
   label_.assign(cloud.info.range.size(), 0);
   const int rows = static_cast<int>(cloud.info.start_ring_index.size());

@@ -179,7 +179,9 @@ TEST(MotionGate, AStreakOfGatedScansKeepsThePoseARotation) {
     if (scan > 0 && scan < driving) odometry = odometry * turn;
     if (scan > 0) kept_turning = kept_turning * turn;
     mapping.process(highway_features(0.0), odometry, 0.1 * scan, std::nullopt, out);
-    if (scan >= driving) ASSERT_TRUE(out.motion_gated) << "scan " << scan;
+    if (scan >= driving) {
+      ASSERT_TRUE(out.motion_gated) << "scan " << scan;
+    }
   }
   const Eigen::Matrix3d rotation = out.pose.linear();
   EXPECT_LT((rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm(), 1e-9);

@@ -33,7 +33,7 @@ class FeatureExtractor {
                const std::vector<ScanPoint>& outliers, FeatureSet& out);
 
  private:
-  void compute_smoothness(const SegmentedCloud& cloud);
+  void compute_curvature(const SegmentedCloud& cloud);
   void mark_unreliable(const SegmentedCloud& cloud);
   void pick_row(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points, int row,
                 FeatureSet& out);
@@ -44,7 +44,10 @@ class FeatureExtractor {
     float value;
     int32_t index;
   };
-  std::vector<Smoothness> smoothness_;
+  // Of a sector, the points that may become edges (off the ground, curvature above the edge
+  // threshold) and those that may become flats (ground, below the surface threshold): only they
+  // are sorted.
+  std::vector<Smoothness> edge_candidates_, flat_candidates_;
   std::vector<float> curvature_;
   std::vector<uint8_t> picked_;  // no longer available for selection
   std::vector<int8_t> label_;    // 2 sharp, 1 less sharp, -1 flat, 0 none
