@@ -18,7 +18,7 @@ PACKAGES=(
   pluginlib-dev libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs
   libpcl-dev libpcl-conversions-dev libpcl-ros-dev libeigen3-dev libceres-dev libyaml-cpp-dev
   libcli11-dev nlohmann-json3-dev libembree-dev libgtest-dev googletest libbenchmark-dev
-  python3-numpy python3-matplotlib
+  python3-numpy python3-matplotlib python3-scipy
   rviz xvfb xauth x11-utils imagemagick
   python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-nav-msgs python3-tf2-msgs
   python3-visualization-msgs python3-rosgraph-msgs
