@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace adaptive_lego_loam::sim {
 namespace {
@@ -108,6 +110,16 @@ PlantShape random_bush_shape(Rng& rng) {
   shape.crown_base = 0.0f;
   shape.extinction = 1.4f;
   shape.max_facets = 1500;
+  return shape;
+}
+
+PlantShape with_foliage_density(PlantShape shape, double density) {
+  if (!(density > 0.0)) {
+    throw std::invalid_argument("foliage density " + std::to_string(density) +
+                                ": expected a positive multiple");
+  }
+  shape.extinction *= static_cast<float>(density);
+  shape.max_facets = static_cast<int>(std::lround(shape.max_facets * density));
   return shape;
 }
 

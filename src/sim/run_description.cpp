@@ -40,6 +40,7 @@ void emit_scenario(YAML::Emitter& out, const ScenarioParams& p) {
   out << YAML::Key << "guard_rails" << YAML::Value << p.guard_rails;
   out << YAML::Key << "tunnel" << YAML::Value << p.tunnel;
   out << YAML::Key << "leaf_jitter_m" << YAML::Value << p.leaf_jitter_m;
+  out << YAML::Key << "foliage_density" << YAML::Value << p.foliage_density;
   out << YAML::Key << "wind_states" << YAML::Value << p.wind_states;
   out << YAML::Key << "rough_road" << YAML::Value << p.rough_road;
   out << YAML::Key << "shake" << YAML::Value << YAML::Flow << YAML::BeginMap;

@@ -46,12 +46,14 @@ void make_prototypes(World& world, const ScenarioParams& p, Layout& layout, Rng&
   for (int i = 0; i < kTreeShapes; ++i) {
     layout.tree_prototypes.push_back(static_cast<int>(world.plant_prototypes.size()));
     world.plant_prototypes.push_back(
-        make_plant(random_tree_shape(rng), p.wind_states, jitter, leaves, wood, rng));
+        make_plant(with_foliage_density(random_tree_shape(rng), p.foliage_density), p.wind_states,
+                   jitter, leaves, wood, rng));
   }
   for (int i = 0; i < kBushShapes; ++i) {
     layout.bush_prototypes.push_back(static_cast<int>(world.plant_prototypes.size()));
     world.plant_prototypes.push_back(
-        make_plant(random_bush_shape(rng), p.wind_states, jitter, leaves, wood, rng));
+        make_plant(with_foliage_density(random_bush_shape(rng), p.foliage_density), p.wind_states,
+                   jitter, leaves, wood, rng));
   }
   const uint32_t body = world.add_surface(SemanticClass::kMovingCar, 0, 0.5f);
   const uint32_t wheels = world.add_surface(SemanticClass::kMovingCar, 0, 0.1f);

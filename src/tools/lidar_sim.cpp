@@ -43,7 +43,7 @@ struct Options {
   double range_noise = 0.02;
   std::optional<double> beam_divergence;
   std::optional<std::string> motion_distortion, rough_road;
-  std::optional<double> speed, leaf_jitter;
+  std::optional<double> speed, leaf_jitter, foliage_density;
   double sensor_height = 1.73;
   bool identical_houses = false;
   bool overwrite = false;
@@ -70,6 +70,7 @@ SceneRequest make_request(const Options& o, const SensorParams& sensor) {
   request.scenario = named_scenario(o.scenario);
   if (o.speed) request.scenario.cruise_speed_mps = *o.speed;
   if (o.leaf_jitter) request.scenario.leaf_jitter_m = *o.leaf_jitter;
+  if (o.foliage_density) request.scenario.foliage_density = *o.foliage_density;
   if (o.identical_houses) {
     // Every place alike: the same house on every lot, no side streets, no trees or bushes.
     request.scenario.identical_houses = true;
@@ -282,6 +283,11 @@ int main(int argc, char** argv) {
   app.add_option("--leaf-jitter", o.leaf_jitter,
                  "leaf movement between scans (wind), m (default 0.04)")
       ->check(CLI::Range(0.0, 0.5));
+  app.add_option(
+         "--foliage-density", o.foliage_density,
+         "how far beams get into trees and bushes: a multiple of the default extinction "
+         "(0.7/m trees, 1.4/m bushes), with as many more leaves of the same size (default 1)")
+      ->check(CLI::Range(0.1, 20.0));
   app.add_option("--sensor-height", o.sensor_height,
                  "sensor height above the road, m (default 1.73)")
       ->check(CLI::Range(0.2, 5.0));

@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/sim/plants.h"
@@ -57,4 +59,36 @@ TEST(SimLabels, FoliageMovesBetweenScansAndCarriesItsInstance) {
   EXPECT_EQ(wall_first, wall_second);
   EXPECT_NE(leaves_first, leaves_second);
   EXPECT_GT(points_of(first, SemanticClass::kTrunk).size(), 5u);
+}
+
+// Beams stop sooner in denser foliage: the same tree at eight times the density returns from
+// nearer its crown's surface (mean free path 1.4 m against 0.18 m), with leaves of the same size.
+TEST(SimLabels, DenserFoliageStopsBeamsNearerTheCrownsSurface) {
+  auto mean_leaf_range = [](double density) {
+    auto world = std::make_shared<World>();
+    const uint32_t leaves = world->add_surface(SemanticClass::kVegetation, 0, 0.45f);
+    const uint32_t wood = world->add_surface(SemanticClass::kTrunk, 0, 0.3f);
+    Rng rng(5);
+    const PlantShape shape = with_foliage_density(random_tree_shape(rng), density);
+    world->plant_prototypes.push_back(make_plant(shape, 1, 0.0f, leaves, wood, rng));
+    Plant plant;
+    plant.base = Eigen::Vector3f(8.0f, 0.0f, -1.73f);
+    world->plants.push_back(plant);
+    world->seed = 11;
+    LidarSimulator simulator(LidarModel(vlp16(), exact_options(1800)), world, standing_at(), 1);
+    const SimFrame frame = simulator.render(0);
+    double sum = 0.0;
+    int count = 0;
+    for (std::size_t i = 0; i < frame.labels.size(); ++i) {
+      if (label_class(frame.labels[i]) != SemanticClass::kVegetation) continue;
+      const ScanPoint& p = frame.scan.points[i];
+      sum += std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+      ++count;
+    }
+    EXPECT_GT(count, 100) << "density " << density;
+    return sum / std::max(count, 1);
+  };
+  EXPECT_LT(mean_leaf_range(8.0), mean_leaf_range(1.0) - 0.5);
+  Rng rng(5);
+  EXPECT_THROW(with_foliage_density(random_tree_shape(rng), 0.0), std::invalid_argument);
 }

@@ -21,6 +21,9 @@ struct PlantShape {
 
 PlantShape random_tree_shape(Rng& rng);
 PlantShape random_bush_shape(Rng& rng);
+// The shape with its extinction times `density` and room for as many more facets, so that its
+// leaves keep their size: beams stop nearer the crown's surface.
+PlantShape with_foliage_density(PlantShape shape, double density);
 
 // `leaf_jitter`: standard deviation of each facet's displacement between wind states (m).
 PlantPrototype make_plant(const PlantShape& shape, int wind_states, float leaf_jitter,

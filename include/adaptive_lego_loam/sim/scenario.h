@@ -60,8 +60,10 @@ struct ScenarioParams {
   double junctions_per_km = 0.0;  // side streets branching off (urban)
   bool guard_rails = false;
   bool tunnel = false;
-  // Vegetation: facet size and the leaf jitter from scan to scan (wind).
+  // Vegetation: the leaf jitter from scan to scan (wind), and how dense the foliage is: a
+  // multiple of each plant's extinction, with as many more leaf facets of the same size.
   double leaf_jitter_m = 0.04;
+  double foliage_density = 1.0;
   int wind_states = 6;
   // Turbulence: the sensor shakes on a rough road.
   bool rough_road = false;
