@@ -3,8 +3,10 @@
 # real KITTI trajectories where they fit) with both sensors and 3 seeds, runs each with beta0
 # fixed at 10, 30 and 60 deg, adaptive and without segmentation, runs the real KITTI scans and the
 # clustering benchmark, then writes the page (scripts/experiments/). Two runs at a time.
-#   scripts/run_experiments.sh [--quick] [--data DIR] [--jobs N]
+#   scripts/run_experiments.sh [--quick] [--data DIR] [--jobs N] [--foliage-density X]
 #     --quick   one seed, 100 scans, three scenarios (a few minutes)
+#     --foliage-density  every simulated drive with lidar_sim --foliage-density X (outputs in
+#               results/experiments_foliageX/)
 #     --data    the folder with kitti_odometry/ (poses/, times/, seq07_frames0-4/, first10/) and
 #               clustering_bench/; default $ALEGO_DATA
 # Raw outputs go to results/experiments/ (git-ignored; kept between runs: delete it to start over).
@@ -12,6 +14,7 @@
 set -euo pipefail
 
 quick=()
+foliage=()
 data="${ALEGO_DATA:-}"
 jobs=2
 while (($#)); do
@@ -23,6 +26,10 @@ while (($#)); do
       ;;
     --jobs)
       jobs="${2:?--jobs needs a number}"
+      shift
+      ;;
+    --foliage-density)
+      foliage=(--foliage-density "${2:?--foliage-density needs a number}")
       shift
       ;;
     -h | --help)
@@ -53,10 +60,11 @@ data="$(cd "$data" && pwd)"
 
 set --  # setup.sh hands its arguments to catkin_make
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-work="$ALEGO_ROOT/results/experiments${quick:+_quick}"
+work="$ALEGO_ROOT/results/experiments${quick:+_quick}${foliage:+_foliage${foliage[1]}}"
 mkdir -p "$work"
 /usr/bin/python3 "$ALEGO_ROOT/scripts/experiments/suite.py" --bin "$ALEGO_BIN" \
-  --root "$ALEGO_ROOT" --data "$data" --work "$work" --jobs "$jobs" "${quick[@]}"
+  --root "$ALEGO_ROOT" --data "$data" --work "$work" --jobs "$jobs" "${quick[@]}" \
+  "${foliage[@]}"
 /usr/bin/python3 "$ALEGO_ROOT/scripts/experiments/report.py" --work "$work" --data "$data" \
   --root "$ALEGO_ROOT"
 echo "run_experiments: docs/RESULTS.md and docs/images/results_*.png written (raw runs in $work)"

@@ -6,7 +6,7 @@ paper's Table I) with both Euclidean criteria; mu from the range image and from 
 drive (Fig. 8). Runs JOBS programs at a time, shows progress, and writes WORK/results.json for
 report.py. Called by scripts/run_experiments.sh, which builds first.
 
-  suite.py --bin DIR --root DIR --data DIR --work DIR [--quick] [--jobs N]
+  suite.py --bin DIR --root DIR --data DIR --work DIR [--quick] [--jobs N] [--foliage-density X]
 """
 
 import argparse
@@ -68,6 +68,7 @@ class Runner:
         self.data = pathlib.Path(args.data)
         self.work = pathlib.Path(args.work)
         self.jobs = args.jobs
+        self.foliage_density = args.foliage_density  # None: lidar_sim's default
         self.done = 0
         self.total = 0
         self.started = time.time()
@@ -123,6 +124,8 @@ class Runner:
             return out
         command = [self.bin / "lidar_sim", "--scenario", scenario, "--sensor", sensor,
                    "--frames", frames, "--seed", seed, "--output", out, "--overwrite"]
+        if self.foliage_density is not None:
+            command += ["--foliage-density", self.foliage_density]
         if sequence:
             poses, times = self.trajectory(sequence, first, frames)
             command += ["--trajectory", poses, "--trajectory-times", times]
@@ -170,7 +173,21 @@ class Runner:
             "output": str(out),
         }
 
+    def check_simulation_settings(self):
+        """The work folder keeps its drives and runs for the next run: never mix two densities."""
+        marker = self.work / "simulation.json"
+        settings = {"foliage_density": self.foliage_density}
+        if marker.exists():
+            kept = json.loads(marker.read_text())
+            if kept != settings:
+                raise RuntimeError(f"{self.work} holds drives simulated with {kept}, not {settings}: "
+                                   "give another --work or delete it")
+        else:
+            self.work.mkdir(parents=True, exist_ok=True)
+            marker.write_text(json.dumps(settings) + "\n")
+
     def simulated_suite(self, quick):
+        self.check_simulation_settings()
         generate = []
         for name, scenario, sequence, first, frames in scenarios(quick):
             for sensor in SENSORS:
@@ -290,10 +307,13 @@ def main():
     parser.add_argument("--work", required=True)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--foliage-density", type=float,
+                        help="lidar_sim --foliage-density for every simulated drive")
     args = parser.parse_args()
     runner = Runner(args)
     started = time.time()
-    results = {"quick": args.quick, "methods": list(METHODS)}
+    results = {"quick": args.quick, "methods": list(METHODS),
+               "foliage_density": args.foliage_density}
     try:
         results["simulated"] = runner.simulated_suite(args.quick)
         results["real"] = runner.real_kitti()
