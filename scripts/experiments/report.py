@@ -536,7 +536,12 @@ the suite, two at a time on the 2 cores:
 
 {self.speed_table()}
 """)
-        sections.append(self.discussion())
+        if quick:
+            # The discussion quotes scenarios and seeds the quick suite does not run.
+            sections.append("## What the results say\n\nThe discussion of the findings needs the full "
+                            "suite: `scripts/run_experiments.sh` without `--quick`.\n")
+        else:
+            sections.append(self.discussion())
         (self.root / "docs" / "RESULTS.md").write_text("\n".join(sections))
 
 
