@@ -536,10 +536,12 @@ the suite, two at a time on the 2 cores:
 
 {self.speed_table()}
 """)
-        if quick:
-            # The discussion quotes scenarios and seeds the quick suite does not run.
-            sections.append("## What the results say\n\nThe discussion of the findings needs the full "
-                            "suite: `scripts/run_experiments.sh` without `--quick`.\n")
+        if quick or density is not None:
+            # The discussion quotes scenarios and seeds the quick suite does not run, and its
+            # findings are those of the default foliage.
+            sections.append("## What the results say\n\nThe discussion of the findings is written "
+                            "for the full suite on the default foliage: `scripts/run_experiments.sh` "
+                            "without `--quick` or `--foliage-density`.\n")
         else:
             sections.append(self.discussion())
         (self.root / "docs" / "RESULTS.md").write_text("\n".join(sections))

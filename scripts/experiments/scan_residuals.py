@@ -28,26 +28,14 @@ try:
 except ImportError:
     sys.exit("scan_residuals: needs scipy (Debian: apt-get install python3-scipy)")
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from plot_run import InputError, load_ground_truth  # noqa: E402  (scripts/ is not a package)
+
 STATIC = [40, 44, 48, 49, 50, 51, 52, 71, 72, 80, 81]
 CLASSES = {"building, fence": [50, 51, 52], "trunk, pole, sign": [71, 80, 81], "car": [10, 252],
            "vegetation": [70]}
 THRESHOLDS_DEG = (10, 30, 60)
 PAIRS = 9
-
-
-def lidar_poses(pose_file, calib_file):
-    """KITTI camera-frame poses turned into the lidar's: Tr^-1 P Tr."""
-    tr = np.eye(4)
-    for line in calib_file.read_text().splitlines():
-        if line.startswith("Tr:"):
-            tr[:3, :] = np.array(line.split()[1:], float).reshape(3, 4)
-    poses = []
-    for line in pose_file.read_text().split("\n"):
-        if line.strip():
-            pose = np.eye(4)
-            pose[:3, :] = np.array(line.split(), float).reshape(3, 4)
-            poses.append(np.linalg.inv(tr) @ pose @ tr)
-    return poses
 
 
 def read_scan(sequence, frame):
@@ -109,7 +97,7 @@ def point_flags(binaries, config, sequence, work):
 
 
 def measure(binaries, config, sequence, pose_file, work):
-    poses = lidar_poses(pose_file, sequence / "calib.txt")
+    poses = load_ground_truth(str(pose_file), str(sequence / "calib.txt"))
     flag_folders = point_flags(binaries, config, sequence, work)
     residuals, labels, flags = [], [], {beta0: [] for beta0 in THRESHOLDS_DEG}
     for frame in range(PAIRS):
@@ -185,4 +173,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except InputError as error:
+        sys.exit(f"scan_residuals: {error}")
