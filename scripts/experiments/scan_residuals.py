@@ -11,7 +11,7 @@ residual and the share beyond 10 cm; then, for beta0 fixed at 10, 30 and 60 deg
 those kept and those dropped.
 
   /usr/bin/python3 scripts/experiments/scan_residuals.py --bin .ws/devel/lib/adaptive_lego_loam \
-      --data DATA --work results/scan_residuals
+      --data DATA --work results/scan_residuals [--foliage-density X]
 
 DATA holds kitti_odometry/first10/{00,02,05,08} (scans with SemanticKITTI labels) and
 kitti_odometry/poses/00.txt; the simulated drives are made in --work by lidar_sim.
@@ -145,6 +145,8 @@ def main():
     parser.add_argument("--bin", required=True, type=Path, help="folder with lidar_sim, segment_scans")
     parser.add_argument("--data", required=True, type=Path, help="folder with kitti_odometry/")
     parser.add_argument("--work", required=True, type=Path, help="folder for the simulated drives")
+    parser.add_argument("--foliage-density", type=float,
+                        help="lidar_sim --foliage-density of the simulated drives (default: its own)")
     parser.add_argument("--config", type=Path,
                         default=Path(__file__).resolve().parents[2] / "config" / "kitti.yaml")
     args = parser.parse_args()
@@ -161,14 +163,15 @@ def main():
         report(f"real KITTI {number}",
                *measure(args.bin, args.config, sequence, sequence / "semantickitti_poses.txt",
                         args.work))
+    density = [] if args.foliage_density is None else ["--foliage-density", f"{args.foliage_density:g}"]
     drives = {"urban": ["--trajectory", str(kitti / "poses" / "00.txt"), "--seed", "21"],
               "busy_street": ["--seed", "1"], "vegetation": ["--seed", "1"]}
     for scenario, options in drives.items():
         sequence = args.work / scenario
         subprocess.run([str(args.bin / "lidar_sim"), "--scenario", scenario, "--sensor", "hdl64e",
                         "--frames", str(PAIRS + 1), "--output", str(sequence), "--overwrite",
-                        *options], check=True, stdout=subprocess.DEVNULL)
-        report(f"simulated {scenario} ({' '.join(options).replace(str(kitti) + '/', '')})",
+                        *options, *density], check=True, stdout=subprocess.DEVNULL)
+        report(f"simulated {scenario} ({' '.join(options + density).replace(str(kitti) + '/', '')})",
                *measure(args.bin, args.config, sequence, sequence / "poses.txt", args.work))
 
 

@@ -31,11 +31,12 @@ METHODS = {  # name: run_sequence arguments
 # Methods that also change the sensor's config: ambient_filter keys and their values. "adaptive
 # d3" is the adaptive filter with the Euclidean criterion of the paper's text (the 3-D distance)
 # and its 7 x 7 window (w 3), where the configs use the authors' range difference with w 5;
-# "adaptive 10-60" maps mu to beta0 over the paper's 10-60 deg, where the configs' strict end is
-# lower (docs/METHOD.md step 8).
+# "adaptive 10-60" is the paper's map, linear from 60 deg at mu 0 to 10 deg at mu 1, where the
+# configs hold each end beyond a knot (docs/METHOD.md step 8).
 CONFIG_CHANGES = {
     "adaptive d3": {"euclidean_criterion": "distance", "euclidean_window": "3"},
-    "adaptive 10-60": {"beta0_max_deg": "60.0"},
+    "adaptive 10-60": {"beta0_min_deg": "10.0", "beta0_max_deg": "60.0", "mu_strict_below": "0.0",
+                       "mu_lenient_above": "1.0"},
 }
 SENSORS = {"hdl64e": "kitti.yaml", "vlp16": "vlp16.yaml"}
 
@@ -69,6 +70,8 @@ class Runner:
         self.work = pathlib.Path(args.work)
         self.jobs = args.jobs
         self.foliage_density = args.foliage_density  # None: lidar_sim's default
+        self.methods = METHODS
+        self.config_changes = CONFIG_CHANGES
         self.done = 0
         self.total = 0
         self.started = time.time()
@@ -134,7 +137,7 @@ class Runner:
 
     def method_config(self, config, method):
         """The sensor's config with `method`'s ambient_filter changes, written under WORK."""
-        changes = CONFIG_CHANGES.get(method)
+        changes = self.config_changes.get(method)
         if not changes:
             return config
         text = pathlib.Path(config).read_text()
@@ -153,7 +156,7 @@ class Runner:
         config = self.method_config(config, method)
         if not (out / "metrics.json").exists():
             self.run([self.bin / "run_sequence", "--config", config, "--input", sequence,
-                      "--output", out, "--cpu-time"] + METHODS[method], out.with_suffix(".log"))
+                      "--output", out, "--cpu-time"] + self.methods[method], out.with_suffix(".log"))
             command = [self.bin / "evaluate_odometry", "--gt", gt or sequence / "poses.txt",
                        "--est", out / "poses_kitti.txt", "--json", out / "metrics.json"]
             if calib:
@@ -186,12 +189,12 @@ class Runner:
             self.work.mkdir(parents=True, exist_ok=True)
             marker.write_text(json.dumps(settings) + "\n")
 
-    def simulated_suite(self, quick):
+    def simulated_suite(self, quick, seed_list=None, sensors=SENSORS):
         self.check_simulation_settings()
         generate = []
         for name, scenario, sequence, first, frames in scenarios(quick):
-            for sensor in SENSORS:
-                for seed in seeds(quick):
+            for sensor in sensors:
+                for seed in seed_list or seeds(quick):
                     generate.append((f"simulate {name} {sensor} seed {seed}",
                                      lambda a=(name, scenario, sequence, first, frames, sensor, seed):
                                      (a, self.simulate(*a))))
@@ -199,7 +202,7 @@ class Runner:
         runs = []
         for (name, _, sequence, first, frames, sensor, seed), folder in sequences:
             config = self.root / "config" / SENSORS[sensor]
-            for method in METHODS:
+            for method in self.methods:
                 out = self.work / "runs" / folder.name / method.replace(" ", "")
                 runs.append((f"{folder.name} {method}",
                              lambda k=(name, sensor, seed, method), f=folder, c=config, o=out:
@@ -220,7 +223,7 @@ class Runner:
                               "semantickitti_poses.txt"))
         runs = []
         for label, folder, gt in sequences:
-            for method in METHODS:
+            for method in self.methods:
                 out = self.work / "real" / folder.name / method.replace(" ", "")
                 runs.append((f"KITTI {label} {method}",
                              lambda l=label, f=folder, g=gt, m=method, o=out:

@@ -97,8 +97,10 @@ PlantShape random_tree_shape(Rng& rng) {
   shape.crown_height = static_cast<float>(rng.uniform(3.0, 6.0));
   shape.crown_base = static_cast<float>(rng.uniform(2.2, 3.6));
   shape.trunk_radius = static_cast<float>(rng.uniform(0.12, 0.3));
-  shape.extinction = 0.7f;
-  shape.max_facets = 2500;
+  // As dense as KITTI's foliage: its returns move from one scan to the next as much as in
+  // KITTI's scans (docs/simulator.md).
+  shape.extinction = 11.2f;
+  shape.max_facets = 40000;
   return shape;
 }
 
@@ -108,8 +110,8 @@ PlantShape random_bush_shape(Rng& rng) {
   shape.crown_radius = static_cast<float>(rng.uniform(0.6, 1.6));
   shape.crown_height = static_cast<float>(rng.uniform(0.8, 2.2));
   shape.crown_base = 0.0f;
-  shape.extinction = 1.4f;
-  shape.max_facets = 1500;
+  shape.extinction = 22.4f;
+  shape.max_facets = 24000;
   return shape;
 }
 

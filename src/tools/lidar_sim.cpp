@@ -286,8 +286,9 @@ int main(int argc, char** argv) {
   app.add_option(
          "--foliage-density", o.foliage_density,
          "how far beams get into trees and bushes: a multiple of the default extinction "
-         "(0.7/m trees, 1.4/m bushes), with as many more leaves of the same size (default 1)")
-      ->check(CLI::Range(0.1, 20.0));
+         "(11.2/m trees, 22.4/m bushes, as dense as KITTI's foliage), with as many more leaves "
+         "of the same size (default 1)")
+      ->check(CLI::Range(0.05, 2.0));
   app.add_option("--sensor-height", o.sensor_height,
                  "sensor height above the road, m (default 1.73)")
       ->check(CLI::Range(0.2, 5.0));

@@ -61,8 +61,9 @@ TEST(SimLabels, FoliageMovesBetweenScansAndCarriesItsInstance) {
   EXPECT_GT(points_of(first, SemanticClass::kTrunk).size(), 5u);
 }
 
-// Beams stop sooner in denser foliage: the same tree at eight times the density returns from
-// nearer its crown's surface (mean free path 1.4 m against 0.18 m), with leaves of the same size.
+// Beams stop sooner in denser foliage: the same tree at the default density returns from nearer
+// its crown's surface than at a sixteenth of it (mean free path 0.09 m against 1.4 m), with
+// leaves of the same size.
 TEST(SimLabels, DenserFoliageStopsBeamsNearerTheCrownsSurface) {
   auto mean_leaf_range = [](double density) {
     auto world = std::make_shared<World>();
@@ -88,7 +89,7 @@ TEST(SimLabels, DenserFoliageStopsBeamsNearerTheCrownsSurface) {
     EXPECT_GT(count, 100) << "density " << density;
     return sum / std::max(count, 1);
   };
-  EXPECT_LT(mean_leaf_range(8.0), mean_leaf_range(1.0) - 0.5);
+  EXPECT_LT(mean_leaf_range(1.0), mean_leaf_range(0.0625) - 0.5);
   Rng rng(5);
   EXPECT_THROW(with_foliage_density(random_tree_shape(rng), 0.0), std::invalid_argument);
 }

@@ -15,8 +15,8 @@ struct PlantShape {
   float trunk_radius = 0.15f;
   // Extinction coefficient of the foliage (1/m): how far a beam gets into it. Facet sizes are
   // chosen to give it with at most `max_facets` facets.
-  float extinction = 0.8f;
-  int max_facets = 2500;
+  float extinction = 11.2f;
+  int max_facets = 40000;
 };
 
 PlantShape random_tree_shape(Rng& rng);

@@ -114,7 +114,8 @@ void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {
                                         ambient.mu_evidence_normals);
     const double smoothing = has_previous_ ? ambient.mu_smoothing : 0.0;
     result.mu = smoothing * previous_mu_ + (1.0 - smoothing) * raw;
-    result.beta0_deg = beta0_from_mu(result.mu, ambient.beta0_min_deg, ambient.beta0_max_deg);
+    result.beta0_deg = beta0_from_mu(result.mu, ambient.beta0_min_deg, ambient.beta0_max_deg,
+                                     ambient.mu_strict_below, ambient.mu_lenient_above);
     has_previous_ = true;
     previous_mu_ = result.mu;
     previous_beta0_deg_ = result.beta0_deg;

@@ -46,8 +46,12 @@ double mu_with_evidence(double mu, int normals, int evidence_normals) {
   return 1.0 - (1.0 - mu) * share;
 }
 
-double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg) {
-  return mu * (beta0_min_deg - beta0_max_deg) + beta0_max_deg;
+double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg, double mu_strict_below,
+                     double mu_lenient_above) {
+  if (mu <= mu_strict_below) return beta0_max_deg;
+  if (mu >= mu_lenient_above) return beta0_min_deg;
+  const double share = (mu - mu_strict_below) / (mu_lenient_above - mu_strict_below);
+  return share * (beta0_min_deg - beta0_max_deg) + beta0_max_deg;
 }
 
 }  // namespace adaptive_lego_loam

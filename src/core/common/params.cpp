@@ -204,6 +204,8 @@ void read_ambient(SectionReader& in, AmbientFilterParams& a) {
              {"none", Beta0Mode::kNone}});
   in.number("beta0_min_deg", a.beta0_min_deg, 0.1, 89.9);
   in.number("beta0_max_deg", a.beta0_max_deg, 0.1, 89.9);
+  in.number("mu_strict_below", a.mu_strict_below, 0.0, 1.0);
+  in.number("mu_lenient_above", a.mu_lenient_above, 0.0, 1.0);
   in.number("skeleton_beta0_deg", a.skeleton_beta0_deg, 0.1, 89.9);
   in.number("fixed_beta0_deg", a.fixed_beta0_deg, 0.1, 89.9);
   in.number("euclidean_window", a.euclidean_window, 1, 10);
@@ -223,6 +225,9 @@ void read_ambient(SectionReader& in, AmbientFilterParams& a) {
   in.number("mu_smoothing", a.mu_smoothing, 0.0, 0.99);
   if (a.beta0_min_deg > a.beta0_max_deg) {
     in.fail("ambient_filter.beta0_min_deg", "must not exceed ambient_filter.beta0_max_deg");
+  }
+  if (a.mu_strict_below >= a.mu_lenient_above) {
+    in.fail("ambient_filter.mu_strict_below", "must be below ambient_filter.mu_lenient_above");
   }
   in.reject_unknown_keys();
 }

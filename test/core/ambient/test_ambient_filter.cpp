@@ -45,6 +45,8 @@ TEST(AmbientFilter, TheSkeletonKeepsItsThresholdWhateverBeta0sRange) {
     Config config = kitti;
     config.ambient.beta0_min_deg = 10.0;
     config.ambient.beta0_max_deg = beta0_max_deg;
+    config.ambient.mu_strict_below = 0.0;  // the paper's linear map
+    config.ambient.mu_lenient_above = 1.0;
     config.ambient.skeleton_beta0_deg = skeleton_beta0_deg;
     AmbientFilterResult result;
     AmbientFilter(config).process(scan, result);

@@ -71,6 +71,15 @@ TEST(Degeneration, HandMadeNormals) {
   EXPECT_DOUBLE_EQ(beta0_from_mu(0.5, 10, 60), 35.0);
 }
 
+// Strict below the first knot, lenient above the second, linear between.
+TEST(Degeneration, Beta0MapHoldsEachEndBeyondItsKnot) {
+  EXPECT_DOUBLE_EQ(beta0_from_mu(0.1, 10, 60, 0.3, 0.5), 60.0);
+  EXPECT_DOUBLE_EQ(beta0_from_mu(0.3, 10, 60, 0.3, 0.5), 60.0);
+  EXPECT_DOUBLE_EQ(beta0_from_mu(0.4, 10, 60, 0.3, 0.5), 35.0);
+  EXPECT_DOUBLE_EQ(beta0_from_mu(0.5, 10, 60, 0.3, 0.5), 10.0);
+  EXPECT_DOUBLE_EQ(beta0_from_mu(0.9, 10, 60, 0.3, 0.5), 10.0);
+}
+
 TEST(Degeneration, FewNormalsPullMuTowardDegenerate) {
   EXPECT_DOUBLE_EQ(mu_with_evidence(0.2, 50, 200), 0.8);  // a quarter of the evidence
   EXPECT_DOUBLE_EQ(mu_with_evidence(0.2, 0, 200), 1.0);

@@ -104,6 +104,14 @@ TEST(Params, Beta0BoundsMustBeOrdered) {
   EXPECT_NE(error.find("ambient_filter.beta0_min_deg"), std::string::npos) << error;
 }
 
+TEST(Params, MuKnotsMustBeOrdered) {
+  const std::string error = error_of(std::string(kMinimal) +
+                                     "ambient_filter:\n  mu_strict_below: 0.6\n"
+                                     "  mu_lenient_above: 0.4\n");
+  EXPECT_NE(error.find("ambient_filter.mu_strict_below"), std::string::npos) << error;
+  EXPECT_NE(error.find("mu_lenient_above"), std::string::npos) << error;
+}
+
 TEST(Params, MissingFileAndBrokenYaml) {
   try {
     load_config("/nonexistent/x.yaml");

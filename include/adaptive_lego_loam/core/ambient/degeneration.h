@@ -28,7 +28,10 @@ Degeneration degeneration_from_normals(const std::vector<NormalFeature>& normals
 // normals / evidence_normals; unchanged with as many or more, or when evidence_normals is 0.
 double mu_with_evidence(double mu, int normals, int evidence_normals);
 
-// beta0 = mu (beta0_min - beta0_max) + beta0_max: a degenerate scene gets the lenient threshold.
-double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg);
+// The strict beta0_max up to mu_strict_below, the lenient beta0_min from mu_lenient_above on,
+// linear between: a degenerate scene gets the lenient threshold. With the knots at 0 and 1 it is
+// the paper's beta0 = mu (beta0_min - beta0_max) + beta0_max.
+double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg,
+                     double mu_strict_below = 0.0, double mu_lenient_above = 1.0);
 
 }  // namespace adaptive_lego_loam

@@ -70,8 +70,11 @@ const char* to_string(EuclideanCriterion criterion);  // "distance", "range_diff
 
 struct AmbientFilterParams {
   Beta0Mode mode = Beta0Mode::kAdaptive;
-  double beta0_min_deg = 10.0;       // lenient end: used when mu = 1 (degenerate scene)
-  double beta0_max_deg = 60.0;       // strict end: used when mu = 0
+  double beta0_min_deg = 10.0;  // lenient end: used when mu = 1 (degenerate scene)
+  double beta0_max_deg = 60.0;  // strict end: used when mu = 0
+  // Step 8's knots: beta0_max up to mu_strict_below, beta0_min from mu_lenient_above on.
+  double mu_strict_below = 0.0;
+  double mu_lenient_above = 1.0;
   double skeleton_beta0_deg = 60.0;  // step 5: the skeleton's strict depth clusters
   double fixed_beta0_deg = 60.0;     // used when mode is kFixed
   // Step 4: adaptive Euclidean clustering on the range image.
