@@ -114,8 +114,11 @@ MapOptimizationNode::~MapOptimizationNode() {
 }
 
 std::unique_ptr<LidarMapping> MapOptimizationNode::make_mapping() const {
-  if (map_folder_.empty()) return std::make_unique<LidarMapping>(config_);
-  return std::make_unique<LidarMapping>(config_, map_keyframes_, initial_pose_);
+  auto mapping = map_folder_.empty()
+                     ? std::make_unique<LidarMapping>(config_)
+                     : std::make_unique<LidarMapping>(config_, map_keyframes_, initial_pose_);
+  mapping->keep_trajectory(false);  // the path is the keyframes'
+  return mapping;
 }
 
 void MapOptimizationNode::on_initial_pose(
@@ -131,6 +134,8 @@ void MapOptimizationNode::on_initial_pose(
     std::lock_guard<std::mutex> lock(mapping_mutex_);
     initial_pose_ = pose;  // also where a restart (time going back) starts from
     mapping_->relocalize(pose);
+    drive_poses_.clear();  // the path starts again where the new pose puts the sensor
+    drive_stamps_.clear();
     ROS_INFO("map_optimization: new initial pose (%.2f, %.2f, %.2f): aligning to the map",
              pose.translation().x(), pose.translation().y(), pose.translation().z());
   } catch (const std::exception& e) {
@@ -147,7 +152,7 @@ MapOptimizationNode::Saved MapOptimizationNode::save(const std::string& folder, 
       throw IoError("localizing on " + map_folder_ + ": the map is the loaded one, not saved");
     }
     keyframes = mapping_->keyframes();  // clouds shared, not copied
-    description.frames = static_cast<int>(stamps_.size());
+    description.frames = static_cast<int>(mapped_scans_);
   }
   const std::string absolute = std::filesystem::absolute(folder).string();
   save_map(absolute, keyframes, description, config_, voxel_size);
@@ -192,7 +197,9 @@ void MapOptimizationNode::process(const ros_bridge::StampMatcher::Group& group) 
              map_folder_.empty() ? "the map starts over" : "localization starts over");
     std::lock_guard<std::mutex> lock(mapping_mutex_);
     mapping_ = make_mapping();
-    stamps_.clear();
+    mapped_scans_ = 0;
+    drive_poses_.clear();
+    drive_stamps_.clear();
     last_stamp_.reset();
   }
   try {
@@ -229,11 +236,31 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
     std::lock_guard<std::mutex> lock(mapping_mutex_);
     mapping_->process(features, odometry_pose, group.stamp.toSec(), prior, out_);
     sensor_frame_ = odometry->child_frame_id.empty() ? frames_.sensor : odometry->child_frame_id;
-    stamps_.push_back(group.stamp);
+    ++mapped_scans_;
+    if (mapping_->localizing() &&
+        (drive_poses_.empty() ||
+         (drive_poses_.back().translation() - out_.pose.translation()).norm() >= 1.0)) {
+      drive_poses_.push_back(out_.pose);
+      drive_stamps_.push_back(group.stamp);
+    }
     publish(group.stamp);
   }
   last_stamp_ = group.stamp;
   heap_trimmer_.after_scan();
+}
+
+nav_msgs::Path MapOptimizationNode::path(const ros::Time& stamp) const {
+  std::vector<Eigen::Isometry3d> poses = drive_poses_;
+  std::vector<ros::Time> stamps = drive_stamps_;
+  if (!mapping_->localizing()) {
+    for (const Keyframe& keyframe : mapping_->keyframes()) {
+      poses.push_back(keyframe.pose);
+      stamps.emplace_back(keyframe.stamp);
+    }
+  }
+  poses.push_back(out_.pose);
+  stamps.push_back(stamp);
+  return ros_bridge::path_to_ros(poses, stamps, frames_.map);
 }
 
 // An attempt is reported on the scan it finished, some scans after its keyframe.
@@ -284,8 +311,7 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
                    ros_bridge::keyframe_positions_to_ros(mapping_->keyframes(), map_header));
   }
   if (path_pub_.getNumSubscribers() > 0 && (out_.loop_closed || path_throttle_.ready())) {
-    publish_shared(path_pub_,
-                   ros_bridge::path_to_ros(mapping_->trajectory(), stamps_, frames_.map));
+    publish_shared(path_pub_, path(stamp));
   }
   if (surround_pub_.getNumSubscribers() > 0 && surround_throttle_.ready()) {
     publish_shared(surround_pub_, ros_bridge::local_map_to_ros(mapping_->local_map(), map_header));

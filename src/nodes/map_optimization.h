@@ -8,6 +8,7 @@
 #include <adaptive_lego_loam/SaveMap.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <nav_msgs/Path.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -58,6 +59,9 @@ class MapOptimizationNode {
   void log_loop(const LoopDetection& loop) const;
   void log_localization(const LocalizationStatus& status);
   void publish(const ros::Time& stamp);
+  // The keyframes (loop closures bend it) or, localizing, the drive's poses a metre apart, and
+  // the newest pose: it grows with the ground covered, not with time.
+  nav_msgs::Path path(const ros::Time& stamp) const;
   void add_diagnostics(ros_bridge::HealthStatus& status) const;
   std::unique_ptr<LidarMapping> make_mapping() const;
   struct Saved {
@@ -78,7 +82,10 @@ class MapOptimizationNode {
   bool uses_prior_;
   ros_bridge::FrameNames frames_;
   std::string sensor_frame_;
-  std::vector<ros::Time> stamps_;  // of every mapped scan, for the path
+  long mapped_scans_ = 0;
+  // rviz's path when localizing: this drive's poses, one a metre (the keyframes when mapping).
+  std::vector<Eigen::Isometry3d> drive_poses_;
+  std::vector<ros::Time> drive_stamps_;
   std::optional<ros::Time> last_stamp_;
   std::optional<LocalizationState> last_state_;
   long lost_scans_ = 0;  // localization: scans mapped while lost

@@ -189,3 +189,22 @@ TEST(MotionGate, AStreakOfGatedScansKeepsThePoseARotation) {
   EXPECT_LT((out.pose.translation() - kept_turning.translation()).norm(), 1e-6);
   EXPECT_LT((rotation - kept_turning.linear()).norm(), 1e-9);
 }
+
+// A node turns the per-scan trajectory off to bound its memory: the mapping is the same without
+// it, and nothing is kept per scan.
+TEST(LidarMapping, WithoutTheTrajectoryMapsTheSameAndKeepsNoPosePerScan) {
+  const Config config = gated_config(0.3);
+  LidarMapping kept(config), not_kept(config);
+  not_kept.keep_trajectory(false);
+  MappingOutput kept_out, not_kept_out;
+  const int scans = 12;
+  for (int scan = 0; scan < scans; ++scan) {
+    const double x = scan * kSpeed;
+    kept.process(highway_features(x), along_x(x), 0.1 * scan, std::nullopt, kept_out);
+    not_kept.process(highway_features(x), along_x(x), 0.1 * scan, std::nullopt, not_kept_out);
+    EXPECT_TRUE(kept_out.pose.isApprox(not_kept_out.pose, 1e-12)) << "scan " << scan;
+  }
+  EXPECT_EQ(kept.trajectory().size(), static_cast<std::size_t>(scans));
+  EXPECT_TRUE(not_kept.trajectory().empty());
+  EXPECT_EQ(kept.keyframes().size(), not_kept.keyframes().size());
+}

@@ -77,8 +77,12 @@ class LidarMapping {
   // to spread it over): the attempt, and the pose graph if it closes loops; returns the attempt,
   // if there was one.
   std::optional<LoopDetection> finish_loop_closure();
-  // Every scan's pose, re-derived from its keyframe so that later keyframe corrections apply.
+  // Every scan's pose, re-derived from its keyframe so that later keyframe corrections apply;
+  // empty when not kept.
   std::vector<Eigen::Isometry3d> trajectory() const;
+  // Whether trajectory() is kept: on by default; a node that runs for hours turns it off, since
+  // it costs every scan about 150 bytes.
+  void keep_trajectory(bool keep) { keeps_trajectory_ = keep; }
 
  private:
   bool motion_is_plausible(const Eigen::Isometry3d& motion) const;
@@ -140,6 +144,7 @@ class LidarMapping {
   // Per scan: the keyframe it hangs from and its pose relative to that keyframe (-1 and the pose
   // itself before the first keyframe).
   std::vector<std::pair<int, Eigen::Isometry3d>> anchors_;
+  bool keeps_trajectory_ = true;
 };
 
 }  // namespace adaptive_lego_loam
