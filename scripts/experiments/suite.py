@@ -302,14 +302,17 @@ class Runner:
         return rows
 
 
+def add_runner_arguments(parser):
+    """The folders and the parallelism a Runner needs (suite.py, tune_beta0_map.py)."""
+    for folder in ("--bin", "--root", "--data", "--work"):
+        parser.add_argument(folder, required=True)
+    parser.add_argument("--jobs", type=int, default=2)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--bin", required=True)
-    parser.add_argument("--root", required=True)
-    parser.add_argument("--data", required=True)
-    parser.add_argument("--work", required=True)
+    add_runner_arguments(parser)
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--foliage-density", type=float,
                         help="lidar_sim --foliage-density for every simulated drive")
     args = parser.parse_args()

@@ -88,13 +88,9 @@ def report(results, maps):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--bin", required=True)
-    parser.add_argument("--root", required=True)
-    parser.add_argument("--data", required=True)
-    parser.add_argument("--work", required=True)
+    suite.add_runner_arguments(parser)
     parser.add_argument("--sensor", required=True, choices=sorted(suite.SENSORS))
     parser.add_argument("--seeds", default="4,5,6", help="comma-separated (default 4,5,6)")
-    parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("maps", nargs="+", type=parse_map, metavar="MAP")
     args = parser.parse_args()
     args.foliage_density = None

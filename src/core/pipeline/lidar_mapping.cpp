@@ -298,11 +298,13 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
     out.pose = pose_;
     fusion_.update_mapping(odometry_pose, pose_);
   }
-  if (keeps_trajectory_ && keyframes_.empty()) {
-    anchors_.emplace_back(-1, pose_);  // no keyframe yet: the pose itself
-  } else if (keeps_trajectory_) {
-    const Keyframe& anchor = keyframes_.back();
-    anchors_.emplace_back(anchor.index, anchor.pose.inverse() * pose_);
+  if (keeps_trajectory_) {
+    if (keyframes_.empty()) {
+      anchors_.emplace_back(-1, pose_);  // no keyframe yet: the pose itself
+    } else {
+      const Keyframe& anchor = keyframes_.back();
+      anchors_.emplace_back(anchor.index, anchor.pose.inverse() * pose_);
+    }
   }
   ++scans_;
   out.times.add("keyframes", watch.lap_ms());

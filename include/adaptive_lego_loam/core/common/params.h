@@ -70,9 +70,10 @@ const char* to_string(EuclideanCriterion criterion);  // "distance", "range_diff
 
 struct AmbientFilterParams {
   Beta0Mode mode = Beta0Mode::kAdaptive;
-  double beta0_min_deg = 10.0;  // lenient end: used when mu = 1 (degenerate scene)
-  double beta0_max_deg = 60.0;  // strict end: used when mu = 0
-  // Step 8's knots: beta0_max up to mu_strict_below, beta0_min from mu_lenient_above on.
+  double beta0_min_deg = 10.0;  // lenient end, for a degenerate scene
+  double beta0_max_deg = 60.0;  // strict end, for a well-constrained one
+  // Step 8's knots: beta0_max up to mu_strict_below, beta0_min from mu_lenient_above on, linear
+  // between (0 and 1: the paper's linear map).
   double mu_strict_below = 0.0;
   double mu_lenient_above = 1.0;
   double skeleton_beta0_deg = 60.0;  // step 5: the skeleton's strict depth clusters
