@@ -300,9 +300,12 @@ class Report:
             return None, None
         along = list(csv.DictReader(open(adaptive / "degeneration.csv")))
         fig, left = plt.subplots(figsize=(10, 4))
-        left.plot([float(r["mu"]) for r in along], "tab:blue", lw=1, label="mu (range image)")
+        left.plot([r["frame"] for r in rows], [r["mu"] for r in rows], "o", color="tab:blue",
+                  ms=4, label="mu (range image, every 10th scan)")
         left.plot([r["frame"] for r in rows], [r["mu_kdtree"] for r in rows], "o",
                   color="tab:orange", ms=4, label="mu (KD-tree, every 10th scan)")
+        left.plot([float(r["mu"]) for r in along], "tab:blue", lw=1, alpha=0.6,
+                  label="mu shifted and smoothed (sets beta0)")
         left.set_ylim(0, 1)
         left.set_xlabel("scan")
         left.set_ylabel("mu")
@@ -508,9 +511,10 @@ scans). Too short for t_err: they show that each method tracks real scans, not t
         if degeneration_path:
             sections.append(f"""## The degeneration degree (the paper's Fig. 8)
 
-mu of each scan from the skeleton's range-image normals (the filter), beta0 set from mu smoothed
-over the scans shown (`ambient_filter.mu_smoothing`), and mu from the same weighted normals of
-every non-ground point found by a 1 m KD-tree radius search (PCL), on every 10th scan. Median
+mu from the skeleton's range-image normals (the filter) and from the same weighted normals of
+every non-ground point found by a 1 m KD-tree radius search (PCL), on every 10th scan; the line is
+the filter's mu of every scan after the shift by the skeleton's share and the smoothing
+(`ambient_filter.mu_structure_weight`, `mu_smoothing`), which sets beta0. Median
 time per scan: range image {timing['image_ms']:.1f} ms (Euclidean clustering,
 skeleton, normals, mu), KD-tree {timing['kdtree_ms']:.0f} ms; mean |difference| of the two mu
 {timing['agreement']:.2f}.

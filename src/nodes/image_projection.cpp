@@ -119,6 +119,7 @@ void ImageProjectionNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
   status.add("mu", filtered_.mu);
   status.add("beta0 (deg)", filtered_.beta0_deg);
   status.add("skeleton points", std::to_string(filtered_.skeleton_points));
+  status.add("skeleton share", filtered_.skeleton_share());
   status.add("beta0 mode", to_string(config_.ambient.mode));
 }
 

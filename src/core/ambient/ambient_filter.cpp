@@ -37,6 +37,10 @@ std::vector<ScanPoint> AmbientFilterResult::skeleton_cloud() const {
   return points;
 }
 
+double AmbientFilterResult::skeleton_share() const {
+  return euclidean_points > 0 ? static_cast<double>(skeleton_points) / euclidean_points : 0.0;
+}
+
 namespace {
 
 // Without segmentation every cluster is kept, however small.
@@ -68,6 +72,8 @@ void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
   if (!result.adaptive) {
     result.degeneration = Degeneration();
     result.skeleton_points = 0;
+    result.euclidean_points = 0;
+    result.surface_points = 0;
     result.normals.clear();
     result.mu = 0.0;
     result.beta0_deg = ambient.mode == Beta0Mode::kNone ? 0.0 : ambient.fixed_beta0_deg;
@@ -102,6 +108,8 @@ void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {
                         result.skeleton_depth);
   result.skeleton_points =
       extract_skeleton(result.euclidean, result.skeleton_depth, result.skeleton);
+  result.euclidean_points = result.euclidean.kept_points();
+  result.surface_points = result.skeleton_depth.kept_points();
   times.add("skeleton", watch.lap_ms());
 
   compute_normals(image, result.skeleton, segmentation.ground,
@@ -110,8 +118,10 @@ void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {
 
   result.degeneration = degeneration_from_normals(result.normals);
   if (result.degeneration.valid) {
-    const double raw = mu_with_evidence(result.degeneration.mu, result.degeneration.normals,
-                                        ambient.mu_evidence_normals);
+    const double raw = mu_with_structure(
+        mu_with_evidence(result.degeneration.mu, result.degeneration.normals,
+                         ambient.mu_evidence_normals),
+        result.skeleton_share(), ambient.mu_structure_weight, ambient.mu_structure_reference);
     const double smoothing = has_previous_ ? ambient.mu_smoothing : 0.0;
     result.mu = smoothing * previous_mu_ + (1.0 - smoothing) * raw;
     result.beta0_deg = beta0_from_mu(result.mu, ambient.beta0_min_deg, ambient.beta0_max_deg,

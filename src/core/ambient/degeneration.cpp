@@ -46,6 +46,11 @@ double mu_with_evidence(double mu, int normals, int evidence_normals) {
   return 1.0 - (1.0 - mu) * share;
 }
 
+double mu_with_structure(double mu, double skeleton_share, double weight, double reference_share) {
+  if (weight == 0.0) return mu;
+  return std::clamp(mu + weight * (skeleton_share - reference_share), 0.0, 1.0);
+}
+
 double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg, double mu_strict_below,
                      double mu_lenient_above) {
   if (mu <= mu_strict_below) return beta0_max_deg;

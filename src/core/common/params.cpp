@@ -222,6 +222,8 @@ void read_ambient(SectionReader& in, AmbientFilterParams& a) {
   in.number("normal_min_neighbors", a.normal_min_neighbors, 3, 1000);
   in.number("seed", a.seed, 0u, 4294967295u);
   in.number("mu_evidence_normals", a.mu_evidence_normals, 0, 1000000);
+  in.number("mu_structure_weight", a.mu_structure_weight, 0.0, 10.0);
+  in.number("mu_structure_reference", a.mu_structure_reference, 0.0, 1.0);
   in.number("mu_smoothing", a.mu_smoothing, 0.0, 0.99);
   if (a.beta0_min_deg > a.beta0_max_deg) {
     in.fail("ambient_filter.beta0_min_deg", "must not exceed ambient_filter.beta0_max_deg");

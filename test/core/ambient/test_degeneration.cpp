@@ -88,6 +88,15 @@ TEST(Degeneration, FewNormalsPullMuTowardDegenerate) {
   EXPECT_DOUBLE_EQ(mu_with_evidence(0.2, 50, 0), 0.2);  // off
 }
 
+TEST(Degeneration, TheSkeletonsShareOfTheSceneShiftsMu) {
+  EXPECT_DOUBLE_EQ(mu_with_structure(0.5, 0.10, 1.0, 0.25), 0.35);  // foliage: toward strict
+  EXPECT_DOUBLE_EQ(mu_with_structure(0.5, 0.45, 1.0, 0.25), 0.70);  // walls: toward lenient
+  EXPECT_DOUBLE_EQ(mu_with_structure(0.5, 0.25, 1.0, 0.25), 0.50);
+  EXPECT_DOUBLE_EQ(mu_with_structure(0.1, 0.0, 1.0, 0.25), 0.0);  // clamped
+  EXPECT_DOUBLE_EQ(mu_with_structure(0.9, 1.0, 1.0, 0.25), 1.0);
+  EXPECT_DOUBLE_EQ(mu_with_structure(0.5, 0.0, 0.0, 0.25), 0.5);  // off
+}
+
 // A well-constrained room seen through fewer normals than the evidence asks for keeps more
 // points: its mu comes from too little structure to trust.
 TEST(Degeneration, AWellConstrainedSceneWithLittleEvidenceGetsTheLenientEnd) {

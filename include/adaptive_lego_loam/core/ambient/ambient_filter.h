@@ -24,6 +24,8 @@ struct AmbientFilterResult {
   ClusterLabels skeleton_depth;   // step 5: depth clusters at beta0_max
   std::vector<uint8_t> skeleton;  // per cell
   int skeleton_points = 0;
+  int euclidean_points = 0;  // non-ground points in step 4's kept clusters
+  int surface_points = 0;    // non-ground points in step 5's kept clusters
   std::vector<NormalFeature> normals;
   Degeneration degeneration;  // of this scan alone; degeneration.valid = false: mu unknown
   double mu = 0.0;            // after smoothing; the previous value when this scan's is unknown
@@ -31,6 +33,8 @@ struct AmbientFilterResult {
   bool adaptive = true;
 
   std::vector<ScanPoint> skeleton_cloud() const;
+  // The skeleton's points over the kept Euclidean clusters' points (0 without any).
+  double skeleton_share() const;
   const StageTimes& times() const { return segmentation.times; }
 };
 

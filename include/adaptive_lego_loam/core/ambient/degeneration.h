@@ -28,6 +28,12 @@ Degeneration degeneration_from_normals(const std::vector<NormalFeature>& normals
 // normals / evidence_normals; unchanged with as many or more, or when evidence_normals is 0.
 double mu_with_evidence(double mu, int normals, int evidence_normals);
 
+// mu shifted by how much of the clustered scene is skeleton: skeleton_share is the skeleton's
+// points over the kept Euclidean clusters' points. Foliage and crowds break up under the strict
+// depth clustering (a small share), walls and rails hold together (a large one):
+// mu' = clamp(mu + weight (skeleton_share - reference_share), 0, 1); unchanged when weight is 0.
+double mu_with_structure(double mu, double skeleton_share, double weight, double reference_share);
+
 // The strict beta0_max up to mu_strict_below, the lenient beta0_min from mu_lenient_above on,
 // linear between: a degenerate scene gets the lenient threshold. With the knots at 0 and 1 it is
 // the paper's beta0 = mu (beta0_min - beta0_max) + beta0_max.

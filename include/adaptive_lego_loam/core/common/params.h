@@ -94,6 +94,9 @@ struct AmbientFilterParams {
   uint32_t seed = 1;
   // Step 7: below this many skeleton normals mu is pulled toward 1 in proportion; 0 = never.
   int mu_evidence_normals = 0;
+  // Step 7: mu shifted by weight * (skeleton share - reference share); weight 0 = never.
+  double mu_structure_weight = 0.0;
+  double mu_structure_reference = 0.3;
   // Step 8: exponential smoothing of mu over scans; 0 = none.
   double mu_smoothing = 0.0;
 };
