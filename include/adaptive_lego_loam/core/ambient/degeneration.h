@@ -29,8 +29,8 @@ Degeneration degeneration_from_normals(const std::vector<NormalFeature>& normals
 double mu_with_evidence(double mu, int normals, int evidence_normals);
 
 // mu shifted by how much of the clustered scene is skeleton: skeleton_share is the skeleton's
-// points over the kept Euclidean clusters' points. Foliage and crowds break up under the strict
-// depth clustering (a small share), walls and rails hold together (a large one):
+// points over the kept Euclidean clusters' points. Foliage breaks up under the strict
+// depth clustering (a small share), walls hold together (a large one):
 // mu' = clamp(mu + weight (skeleton_share - reference_share), 0, 1); unchanged when weight is 0.
 double mu_with_structure(double mu, double skeleton_share, double weight, double reference_share);
 
