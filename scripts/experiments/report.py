@@ -433,15 +433,20 @@ class Report:
         return re.sub(r"\{\{([^}|]+)(?:\|(\d))?\}\}", value, text)
 
     def beta0_map(self, config):
-        """How a sensor's config maps mu to beta0 (ambient_filter.beta0_min/max_deg and the knots
-        mu_strict_below, mu_lenient_above), e.g. '60 deg up to mu 0.3, 10 deg from mu 0.55'."""
+        """How a sensor's config maps mu to beta0 (ambient_filter.beta0_min/max_deg, the knots
+        mu_strict_below, mu_lenient_above and the shift mu_structure_weight/_reference), e.g.
+        '60 deg up to mu 0.3, 10 deg from mu 0.55, linear between'."""
         text = (self.root / "config" / config).read_text()
-        low, high, strict, lenient = [
+        low, high, strict, lenient, weight, reference = [
             float(re.search(rf"^  {key}:\s*([\d.]+)", text, flags=re.M).group(1))
-            for key in ("beta0_min_deg", "beta0_max_deg", "mu_strict_below", "mu_lenient_above")]
+            for key in ("beta0_min_deg", "beta0_max_deg", "mu_strict_below", "mu_lenient_above",
+                        "mu_structure_weight", "mu_structure_reference")]
+        shift = (f"mu shifted by {weight:g} x (skeleton share - {reference:g}), then "
+                 if weight else "")
         if strict == 0 and lenient == 1:
-            return f"linear over {low:g}-{high:g} deg"
-        return f"{high:g} deg up to mu {strict:g}, {low:g} deg from mu {lenient:g}, linear between"
+            return f"{shift}linear over {low:g}-{high:g} deg"
+        return (f"{shift}{high:g} deg up to mu {strict:g}, {low:g} deg from mu {lenient:g}, "
+                "linear between")
 
     def beta0_maps(self):
         """The sensors' maps from mu to beta0, named once when they agree."""
@@ -470,7 +475,8 @@ and window, the authors' range-difference test with w 5, and its map from mu to 
 {self.beta0_maps()}), the
 same with the distance test of the paper's text and w 3 (`adaptive d3`,
 `ambient_filter.euclidean_criterion: distance`, `euclidean_window: 3`), the same
-with the paper's map, linear from 60 deg at mu 0 to 10 deg at mu 1 (`adaptive 10-60`), and no
+with the paper's map, linear from 60 deg at mu 0 to 10 deg at mu 1 (`adaptive 10-60`), the
+config's map on mu from the normals alone, without the shift (`adaptive mu alone`), and no
 segmentation at all (`--no-segmentation`, every non-ground point
 kept, LOAM-like). Scenarios are simulated
 (`lidar_sim`, [simulator.md](simulator.md)) with exact ground truth, along the real KITTI

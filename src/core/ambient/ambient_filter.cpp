@@ -73,7 +73,6 @@ void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
     result.degeneration = Degeneration();
     result.skeleton_points = 0;
     result.euclidean_points = 0;
-    result.surface_points = 0;
     result.normals.clear();
     result.mu = 0.0;
     result.beta0_deg = ambient.mode == Beta0Mode::kNone ? 0.0 : ambient.fixed_beta0_deg;
@@ -109,7 +108,6 @@ void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {
   result.skeleton_points =
       extract_skeleton(result.euclidean, result.skeleton_depth, result.skeleton);
   result.euclidean_points = result.euclidean.kept_points();
-  result.surface_points = result.skeleton_depth.kept_points();
   times.add("skeleton", watch.lap_ms());
 
   compute_normals(image, result.skeleton, segmentation.ground,

@@ -25,7 +25,6 @@ struct AmbientFilterResult {
   std::vector<uint8_t> skeleton;  // per cell
   int skeleton_points = 0;
   int euclidean_points = 0;  // non-ground points in step 4's kept clusters
-  int surface_points = 0;    // non-ground points in step 5's kept clusters
   std::vector<NormalFeature> normals;
   Degeneration degeneration;  // of this scan alone; degeneration.valid = false: mu unknown
   double mu = 0.0;            // after smoothing; the previous value when this scan's is unknown
