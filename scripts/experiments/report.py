@@ -434,15 +434,18 @@ class Report:
 
     def beta0_map(self, config):
         """How a sensor's config maps mu to beta0 (ambient_filter.beta0_min/max_deg, the knots
-        mu_strict_below, mu_lenient_above and the shift mu_structure_weight/_reference), e.g.
+        mu_strict_below, mu_lenient_above and the shift mu_structure_weight/_reference with
+        fragment_smoothness_floor), e.g.
         '60 deg up to mu 0.3, 10 deg from mu 0.55, linear between'."""
         text = (self.root / "config" / config).read_text()
-        low, high, strict, lenient, weight, reference = [
+        low, high, strict, lenient, weight, reference, floor = [
             float(re.search(rf"^  {key}:\s*([\d.]+)", text, flags=re.M).group(1))
             for key in ("beta0_min_deg", "beta0_max_deg", "mu_strict_below", "mu_lenient_above",
-                        "mu_structure_weight", "mu_structure_reference")]
-        shift = (f"mu shifted by {weight:g} x (skeleton share - {reference:g}), then "
-                 if weight else "")
+                        "mu_structure_weight", "mu_structure_reference",
+                        "fragment_smoothness_floor")]
+        share = (f"structure share, fragments smoother than {floor:g} counted in proportion"
+                 if floor < 1 else "skeleton share")
+        shift = f"mu shifted by {weight:g} x ({share} - {reference:g}), then " if weight else ""
         if strict == 0 and lenient == 1:
             return f"{shift}linear over {low:g}-{high:g} deg"
         return (f"{shift}{high:g} deg up to mu {strict:g}, {low:g} deg from mu {lenient:g}, "
@@ -476,7 +479,9 @@ and window, the authors' range-difference test with w 5, and its map from mu to 
 same with the distance test of the paper's text and w 3 (`adaptive d3`,
 `ambient_filter.euclidean_criterion: distance`, `euclidean_window: 3`), the same
 with the paper's map, linear from 60 deg at mu 0 to 10 deg at mu 1 (`adaptive 10-60`), the
-config's map on mu from the normals alone, without the shift (`adaptive mu alone`), and no
+config's map on mu from the normals alone, without the shift (`adaptive mu alone`), the same
+shifted by the skeleton's share alone, smooth fragments not counted as structure (`adaptive
+skeleton share`), and no
 segmentation at all (`--no-segmentation`, every non-ground point
 kept, LOAM-like). Scenarios are simulated
 (`lidar_sim`, [simulator.md](simulator.md)) with exact ground truth, along the real KITTI
@@ -519,7 +524,7 @@ scans). Too short for t_err: they show that each method tracks real scans, not t
 
 mu from the skeleton's range-image normals (the filter) and from the same weighted normals of
 every non-ground point found by a 1 m KD-tree radius search (PCL), on every 10th scan; the line is
-the filter's mu of every scan after the shift by the skeleton's share and the smoothing
+the filter's mu of every scan after the shift by the structure share and the smoothing
 (`ambient_filter.mu_structure_weight`, `mu_smoothing`), which sets beta0. Median
 time per scan: range image {timing['image_ms']:.1f} ms (Euclidean clustering,
 skeleton, normals, mu), KD-tree {timing['kdtree_ms']:.0f} ms; mean |difference| of the two mu

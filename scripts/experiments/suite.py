@@ -27,6 +27,7 @@ METHODS = {  # name: run_sequence arguments
     "adaptive d3": ["--adaptive"],
     "adaptive 10-60": ["--adaptive"],
     "adaptive mu alone": ["--adaptive"],
+    "adaptive skeleton share": ["--adaptive"],
     "none": ["--no-segmentation"],
 }
 # Methods that also change the sensor's config: ambient_filter keys and their values. "adaptive
@@ -34,13 +35,15 @@ METHODS = {  # name: run_sequence arguments
 # and its 7 x 7 window (w 3), where the configs use the authors' range difference with w 5;
 # "adaptive 10-60" is the paper's map, linear from 60 deg at mu 0 to 10 deg at mu 1, where the
 # configs hold each end beyond a knot (docs/METHOD.md step 8), with mu from the normals alone;
-# "adaptive mu alone" is the configs' map on mu from the normals alone, without the skeleton's
-# share of the scene (docs/METHOD.md step 7).
+# "adaptive mu alone" is the configs' map on mu from the normals alone, without the shift by the
+# structure share of the scene; "adaptive skeleton share" shifts mu by the skeleton's share alone,
+# the smooth fragments not counted as structure (docs/METHOD.md step 7).
 CONFIG_CHANGES = {
     "adaptive d3": {"euclidean_criterion": "distance", "euclidean_window": "3"},
     "adaptive 10-60": {"beta0_min_deg": "10.0", "beta0_max_deg": "60.0", "mu_strict_below": "0.0",
                        "mu_lenient_above": "1.0", "mu_structure_weight": "0"},
     "adaptive mu alone": {"mu_structure_weight": "0"},
+    "adaptive skeleton share": {"fragment_smoothness_floor": "1"},
 }
 SENSORS = {"hdl64e": "kitti.yaml", "vlp16": "vlp16.yaml"}
 

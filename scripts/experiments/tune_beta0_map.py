@@ -8,9 +8,10 @@ and the spread of mu over its scans (mu does not depend on the map).
   tune_beta0_map.py --bin DIR --root DIR --data DIR --work DIR --sensor hdl64e|vlp16
                     [--seeds 4,5,6] [--jobs N] MAP [MAP ...]
 
-A MAP is MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE]: beta0_min_deg and beta0_max_deg, the
-knots mu_strict_below and mu_lenient_above (0-1 when left out), and mu_structure_weight and
-mu_structure_reference (weight 0 when left out), e.g. 10-60:0.3-0.55 or 10-60:0.3-0.45+1,0.25.
+A MAP is MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE[@FLOOR]]: beta0_min_deg and
+beta0_max_deg, the knots mu_strict_below and mu_lenient_above (0-1 when left out),
+mu_structure_weight and mu_structure_reference (weight 0 when left out) and
+fragment_smoothness_floor (1 when left out), e.g. 10-60:0.3-0.55 or 10-60:0.3-0.45+1.5,0.25@0.45.
 """
 
 import argparse
@@ -25,26 +26,30 @@ FIXED = ["fixed 10", "fixed 30", "fixed 60"]
 
 
 def parse_map(text):
-    """'10-60:0.3-0.55+1,0.25' -> ('map 10-60:0.3-0.55+1,0.25', {ambient_filter key: value})."""
+    """'10-60:0.3-0.55+1.5,0.25@0.45' -> ('map 10-60:0.3-0.55+1.5,0.25@0.45',
+    {ambient_filter key: value})."""
     try:
         spec, _, structure = text.partition("+")
+        structure, _, floor = structure.partition("@")
         weight, reference = (float(v) for v in structure.split(",")) if structure else (0.0, 0.3)
+        floor = float(floor) if floor else 1.0
         ends, _, knots = spec.partition(":")
         low, high = (float(v) for v in ends.split("-"))
         strict, lenient = (float(v) for v in knots.split("-")) if knots else (0.0, 1.0)
     except ValueError:
         raise argparse.ArgumentTypeError(f"map {text!r}: expected "
-                                         "MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE], "
-                                         "e.g. 10-60:0.3-0.55+1,0.25")
+                                         "MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE[@FLOOR]], "
+                                         "e.g. 10-60:0.3-0.55+1.5,0.25@0.45")
     if not (0 < low <= high < 90 and 0 <= strict < lenient <= 1 and 0 <= weight <= 10
-            and 0 <= reference <= 1):
+            and 0 <= reference <= 1 and 0 <= floor <= 1):
         raise argparse.ArgumentTypeError(f"map {text!r}: expected 0 < MIN <= MAX < 90, "
                                          "0 <= STRICT < LENIENT <= 1, 0 <= WEIGHT <= 10 and "
-                                         "0 <= REFERENCE <= 1")
+                                         "0 <= REFERENCE, FLOOR <= 1")
     return f"map {text}", {"beta0_min_deg": f"{low:g}", "beta0_max_deg": f"{high:g}",
                            "mu_strict_below": f"{strict:g}", "mu_lenient_above": f"{lenient:g}",
                            "mu_structure_weight": f"{weight:g}",
-                           "mu_structure_reference": f"{reference:g}"}
+                           "mu_structure_reference": f"{reference:g}",
+                           "fragment_smoothness_floor": f"{floor:g}"}
 
 
 def scan_mus(run_folder):

@@ -120,6 +120,8 @@ void ImageProjectionNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
   status.add("beta0 (deg)", filtered_.beta0_deg);
   status.add("skeleton points", std::to_string(filtered_.skeleton_points));
   status.add("skeleton share", filtered_.skeleton_share());
+  status.add("fragment smoothness", filtered_.fragment_smoothness);
+  status.add("structure share", filtered_.structure_share);
   status.add("beta0 mode", to_string(config_.ambient.mode));
 }
 

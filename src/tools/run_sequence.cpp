@@ -79,7 +79,8 @@ class Outputs {
       timing << "," << stage;
     timing << ",total,rss_mb,heap_mb\n";
     degeneration_.stream() << "frame,mu,beta0_deg,direction_x,direction_y,skeleton_points,"
-                              "normals,valid,map_degenerate_directions,euclidean_points\n";
+                              "normals,valid,map_degenerate_directions,euclidean_points,"
+                              "fragment_smoothness,structure_share\n";
     localization_.stream() << "frame,state,match_ratio,alignment,inlier_ratio,inlier_mse\n";
   }
 
@@ -144,7 +145,8 @@ class Outputs {
                            << d.weak_direction.x() << "," << d.weak_direction.y() << ","
                            << filtered.skeleton_points << "," << d.normals << "," << int(d.valid)
                            << "," << frame.mapping.degenerate_directions << ","
-                           << filtered.euclidean_points << "\n";
+                           << filtered.euclidean_points << "," << filtered.fragment_smoothness
+                           << "," << filtered.structure_share << "\n";
     stamps.push_back(frame.stamp);
     for (const auto& [stage, ms] : frame.times.entries())
       stage_ms[stage].push_back(ms);

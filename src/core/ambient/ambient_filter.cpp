@@ -73,6 +73,8 @@ void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
     result.degeneration = Degeneration();
     result.skeleton_points = 0;
     result.euclidean_points = 0;
+    result.fragment_smoothness = 0.0;
+    result.structure_share = 0.0;
     result.normals.clear();
     result.mu = 0.0;
     result.beta0_deg = ambient.mode == Beta0Mode::kNone ? 0.0 : ambient.fixed_beta0_deg;
@@ -108,18 +110,23 @@ void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {
   result.skeleton_points =
       extract_skeleton(result.euclidean, result.skeleton_depth, result.skeleton);
   result.euclidean_points = result.euclidean.kept_points();
+  result.fragment_smoothness = fragment_smoothness(image, result.euclidean, result.skeleton,
+                                                   ambient.fragment_smooth_tolerance_m);
   times.add("skeleton", watch.lap_ms());
 
   compute_normals(image, result.skeleton, segmentation.ground,
                   normal_params(ambient, config_.sensor.max_range), result.normals);
   times.add("normals", watch.lap_ms());
 
+  result.structure_share =
+      structure_share(result.skeleton_points, result.euclidean_points, result.fragment_smoothness,
+                      ambient.fragment_smoothness_floor);
   result.degeneration = degeneration_from_normals(result.normals);
   if (result.degeneration.valid) {
     const double raw = mu_with_structure(
         mu_with_evidence(result.degeneration.mu, result.degeneration.normals,
                          ambient.mu_evidence_normals),
-        result.skeleton_share(), ambient.mu_structure_weight, ambient.mu_structure_reference);
+        result.structure_share, ambient.mu_structure_weight, ambient.mu_structure_reference);
     const double smoothing = has_previous_ ? ambient.mu_smoothing : 0.0;
     result.mu = smoothing * previous_mu_ + (1.0 - smoothing) * raw;
     result.beta0_deg = beta0_from_mu(result.mu, ambient.beta0_min_deg, ambient.beta0_max_deg,

@@ -46,9 +46,21 @@ double mu_with_evidence(double mu, int normals, int evidence_normals) {
   return 1.0 - (1.0 - mu) * share;
 }
 
-double mu_with_structure(double mu, double skeleton_share, double weight, double reference_share) {
+double structure_share(int skeleton_points, int clustered_points, double fragment_smoothness,
+                       double smoothness_floor) {
+  if (clustered_points <= 0) return 0.0;
+  const double excess =
+      smoothness_floor < 1.0
+          ? std::clamp((fragment_smoothness - smoothness_floor) / (1.0 - smoothness_floor), 0.0,
+                       1.0)
+          : 0.0;
+  const double fragments = std::max(clustered_points - skeleton_points, 0);
+  return (skeleton_points + excess * fragments) / clustered_points;
+}
+
+double mu_with_structure(double mu, double share, double weight, double reference_share) {
   if (weight == 0.0) return mu;
-  return std::clamp(mu + weight * (skeleton_share - reference_share), 0.0, 1.0);
+  return std::clamp(mu + weight * (share - reference_share), 0.0, 1.0);
 }
 
 double beta0_from_mu(double mu, double beta0_min_deg, double beta0_max_deg, double mu_strict_below,

@@ -1,5 +1,7 @@
 #include "adaptive_lego_loam/core/ambient/skeleton.h"
 
+#include <cmath>
+
 namespace adaptive_lego_loam {
 
 int extract_skeleton(const ClusterLabels& euclidean, const ClusterLabels& depth,
@@ -20,6 +22,25 @@ int extract_skeleton(const ClusterLabels& euclidean, const ClusterLabels& depth,
     count += flag[cell];
   }
   return count;
+}
+
+double fragment_smoothness(const RangeImage& image, const ClusterLabels& euclidean,
+                           const std::vector<uint8_t>& skeleton, double tolerance_m) {
+  int fragment_points = 0;
+  int smooth_points = 0;
+  for (int cell = 0; cell < image.size(); ++cell) {
+    if (skeleton[cell] || !euclidean.point_kept(cell)) continue;
+    const int row = image.row_of(cell);
+    const int col = image.col_of(cell);
+    const int left = image.cell(row, image.wrap_col(col - 1));
+    const int right = image.cell(row, image.wrap_col(col + 1));
+    if (!image.occupied(left) || !image.occupied(right)) continue;
+    const double second_difference =
+        image.range(left) + image.range(right) - 2.0 * image.range(cell);
+    ++fragment_points;
+    smooth_points += std::abs(second_difference) < tolerance_m;
+  }
+  return fragment_points > 0 ? static_cast<double>(smooth_points) / fragment_points : 0.0;
 }
 
 }  // namespace adaptive_lego_loam

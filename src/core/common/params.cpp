@@ -224,6 +224,8 @@ void read_ambient(SectionReader& in, AmbientFilterParams& a) {
   in.number("mu_evidence_normals", a.mu_evidence_normals, 0, 1000000);
   in.number("mu_structure_weight", a.mu_structure_weight, 0.0, 10.0);
   in.number("mu_structure_reference", a.mu_structure_reference, 0.0, 1.0);
+  in.number("fragment_smoothness_floor", a.fragment_smoothness_floor, 0.0, 1.0);
+  in.number("fragment_smooth_tolerance_m", a.fragment_smooth_tolerance_m, 0.001, 10.0);
   in.number("mu_smoothing", a.mu_smoothing, 0.0, 0.99);
   if (a.beta0_min_deg > a.beta0_max_deg) {
     in.fail("ambient_filter.beta0_min_deg", "must not exceed ambient_filter.beta0_max_deg");

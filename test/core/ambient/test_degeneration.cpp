@@ -88,13 +88,22 @@ TEST(Degeneration, FewNormalsPullMuTowardDegenerate) {
   EXPECT_DOUBLE_EQ(mu_with_evidence(0.2, 50, 0), 0.2);  // off
 }
 
-TEST(Degeneration, TheSkeletonsShareOfTheSceneShiftsMu) {
+TEST(Degeneration, TheStructureShareOfTheSceneShiftsMu) {
   EXPECT_DOUBLE_EQ(mu_with_structure(0.5, 0.10, 1.0, 0.25), 0.35);  // foliage: toward strict
   EXPECT_DOUBLE_EQ(mu_with_structure(0.5, 0.45, 1.0, 0.25), 0.70);  // walls: toward lenient
   EXPECT_DOUBLE_EQ(mu_with_structure(0.5, 0.25, 1.0, 0.25), 0.50);
   EXPECT_DOUBLE_EQ(mu_with_structure(0.1, 0.0, 1.0, 0.25), 0.0);  // clamped
   EXPECT_DOUBLE_EQ(mu_with_structure(0.9, 1.0, 1.0, 0.25), 1.0);
   EXPECT_DOUBLE_EQ(mu_with_structure(0.5, 0.0, 0.0, 0.25), 0.5);  // off
+}
+
+TEST(Degeneration, SmoothFragmentsCountAsStructureAndRoughOnesDoNot) {
+  // 100 skeleton points of 1000 clustered: 900 fragments.
+  EXPECT_DOUBLE_EQ(structure_share(100, 1000, 0.65, 0.45), (100 + 900 * 0.2 / 0.55) / 1000);
+  EXPECT_DOUBLE_EQ(structure_share(100, 1000, 0.43, 0.45), 0.1);  // leaves: the skeleton alone
+  EXPECT_DOUBLE_EQ(structure_share(100, 1000, 1.0, 0.45), 1.0);   // every fragment smooth
+  EXPECT_DOUBLE_EQ(structure_share(100, 1000, 0.65, 1.0), 0.1);   // floor 1: off
+  EXPECT_DOUBLE_EQ(structure_share(0, 0, 0.65, 0.45), 0.0);       // nothing clustered
 }
 
 // A well-constrained room seen through fewer normals than the evidence asks for keeps more

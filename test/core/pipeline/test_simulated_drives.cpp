@@ -174,34 +174,55 @@ TEST(SimOdometry, HighwayAndTunnelAreMoreDegenerateThanUrban) {
 // Foliage breaks up under the skeleton's strict depth clustering and walls hold together: the
 // skeleton is a far smaller share of the clustered points among trees and planted verges than in
 // a street of buildings. mu cannot tell a planted highway from a city street (both about 0.55 on
-// the HDL-64E); this share can (ambient_filter.mu_structure_weight).
-TEST(SimOdometry, TheSkeletonIsASmallShareOfFoliageAndALargeOneOfAStreet) {
+// the HDL-64E); this share can. Guard rails break up too, at grazing incidence, but their
+// fragments lie on smooth lines where leaves' do not: counted as structure, they lift the bare
+// highway's share above the planted one's (ambient_filter.fragment_smoothness_floor).
+TEST(SimOdometry, TheSkeletonIsASmallShareOfFoliageAndRailsFragmentsAreSmooth) {
   const Config config = kitti_config();
-  auto median_share = [&](const ScenarioParams& scenario) {
+  struct Medians {
+    double skeleton_share, smoothness, structure_share;
+  };
+  auto median = [](std::vector<double>& values) {
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    return values.empty() ? -1.0 : values[values.size() / 2];
+  };
+  auto medians = [&](const ScenarioParams& scenario) {
     AmbientFilter filter(config);
     AmbientFilterResult result;
-    std::vector<double> shares;
+    std::vector<double> skeleton_shares, smoothness, structure_shares;
     for (uint64_t seed = 1; seed <= 2; ++seed) {
       SceneRequest request = scene_request(ScenarioKind::kUrban, seed, 200);
       request.scenario = scenario;
       for (const SimFrame& frame : simulate(request, 200, 20)) {
         filter.process(frame.scan, result);
-        if (result.euclidean_points > 0) shares.push_back(result.skeleton_share());
+        if (result.euclidean_points == 0) continue;
+        skeleton_shares.push_back(result.skeleton_share());
+        smoothness.push_back(result.fragment_smoothness);
+        structure_shares.push_back(result.structure_share);
       }
     }
-    std::nth_element(shares.begin(), shares.begin() + shares.size() / 2, shares.end());
-    return shares.empty() ? -1.0 : shares[shares.size() / 2];
+    return Medians{median(skeleton_shares), median(smoothness), median(structure_shares)};
   };
-  const double urban = median_share(default_scenario(ScenarioKind::kUrban));
-  const double vegetation = median_share(default_scenario(ScenarioKind::kVegetation));
-  const double planted = median_share(named_scenario("green_highway"));
-  std::printf(
-      "[ measured ] median skeleton share: urban %.3f, vegetation %.3f, planted highway "
-      "%.3f\n",
-      urban, vegetation, planted);
-  ASSERT_GT(urban, 0.0);
-  EXPECT_LT(vegetation, urban / 3.0);
-  EXPECT_LT(planted, urban / 2.0);
+  const Medians urban = medians(default_scenario(ScenarioKind::kUrban));
+  const Medians vegetation = medians(default_scenario(ScenarioKind::kVegetation));
+  const Medians planted = medians(named_scenario("green_highway"));
+  const Medians bare = medians(default_scenario(ScenarioKind::kHighway));
+  for (const auto& [name, m] : {std::pair{"urban", urban},
+                                {"vegetation", vegetation},
+                                {"planted highway", planted},
+                                {"bare highway", bare}}) {
+    std::printf(
+        "[ measured ] %s: median skeleton share %.3f, fragment smoothness %.3f, "
+        "structure share %.3f\n",
+        name, m.skeleton_share, m.smoothness, m.structure_share);
+  }
+  ASSERT_GT(urban.skeleton_share, 0.0);
+  EXPECT_LT(vegetation.skeleton_share, urban.skeleton_share / 3.0);
+  EXPECT_LT(planted.skeleton_share, urban.skeleton_share / 2.0);
+  EXPECT_GT(bare.smoothness, vegetation.smoothness + 0.1);
+  EXPECT_GT(bare.smoothness, planted.smoothness + 0.05);
+  EXPECT_GT(bare.structure_share, planted.structure_share + 0.1);
+  EXPECT_LT(vegetation.structure_share, urban.structure_share / 3.0);
 }
 
 // The paper's KITTI 01 case on the simulated highway, driven along KITTI 01's real trajectory

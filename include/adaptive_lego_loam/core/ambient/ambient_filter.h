@@ -24,7 +24,9 @@ struct AmbientFilterResult {
   ClusterLabels skeleton_depth;   // step 5: depth clusters at beta0_max
   std::vector<uint8_t> skeleton;  // per cell
   int skeleton_points = 0;
-  int euclidean_points = 0;  // non-ground points in step 4's kept clusters
+  int euclidean_points = 0;          // non-ground points in step 4's kept clusters
+  double fragment_smoothness = 0.0;  // fragment_smoothness() of step 4's and 5's labels
+  double structure_share = 0.0;      // structure_share(): the skeleton and smooth fragments
   std::vector<NormalFeature> normals;
   Degeneration degeneration;  // of this scan alone; degeneration.valid = false: mu unknown
   double mu = 0.0;            // after smoothing; the previous value when this scan's is unknown

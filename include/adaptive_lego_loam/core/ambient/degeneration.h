@@ -28,11 +28,18 @@ Degeneration degeneration_from_normals(const std::vector<NormalFeature>& normals
 // normals / evidence_normals; unchanged with as many or more, or when evidence_normals is 0.
 double mu_with_evidence(double mu, int normals, int evidence_normals);
 
-// mu shifted by how much of the clustered scene is skeleton: skeleton_share is the skeleton's
-// points over the kept Euclidean clusters' points. Foliage breaks up under the strict
-// depth clustering (a small share), walls hold together (a large one):
-// mu' = clamp(mu + weight (skeleton_share - reference_share), 0, 1); unchanged when weight is 0.
-double mu_with_structure(double mu, double skeleton_share, double weight, double reference_share);
+// The share of the clustered scene that is structure: the skeleton, plus the fragments (clustered
+// points not in the skeleton) in proportion to how much smoother than noise they are,
+// (skeleton + e fragments) / clustered with e = clamp((smoothness - floor) / (1 - floor), 0, 1).
+// With floor 1 it is the skeleton's share alone; 0 without clustered points.
+double structure_share(int skeleton_points, int clustered_points, double fragment_smoothness,
+                       double smoothness_floor);
+
+// mu shifted by how much of the clustered scene is structure (structure_share(): foliage breaks up
+// under the strict depth clustering and its fragments are rough, walls hold together, rails break
+// into smooth fragments): mu' = clamp(mu + weight (share - reference_share), 0, 1); unchanged
+// when weight is 0.
+double mu_with_structure(double mu, double share, double weight, double reference_share);
 
 // The strict beta0_max up to mu_strict_below, the lenient beta0_min from mu_lenient_above on,
 // linear between: a degenerate scene gets the lenient threshold. With the knots at 0 and 1 it is

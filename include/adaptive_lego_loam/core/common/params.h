@@ -94,9 +94,12 @@ struct AmbientFilterParams {
   uint32_t seed = 1;
   // Step 7: below this many skeleton normals mu is pulled toward 1 in proportion; 0 = never.
   int mu_evidence_normals = 0;
-  // Step 7: mu shifted by weight * (skeleton share - reference share); weight 0 = never.
+  // Step 7: mu shifted by weight * (structure share - reference share); weight 0 = never.
   double mu_structure_weight = 0.0;
   double mu_structure_reference = 0.3;
+  // Step 7: fragments smoother than the floor count as structure in proportion; 1 = never.
+  double fragment_smoothness_floor = 1.0;
+  double fragment_smooth_tolerance_m = 0.05;  // second difference of range along a row
   // Step 8: exponential smoothing of mu over scans; 0 = none.
   double mu_smoothing = 0.0;
 };
