@@ -41,6 +41,17 @@ ScanPoint cell_point(const SensorParams& sensor, int row, int col, double range)
   return point;
 }
 
+void add_scatter(const SensorParams& sensor, int row_begin, int row_end, int col_begin, int col_end,
+                 double range_m, double depth_m, std::mt19937& rng, Scan& scan) {
+  std::uniform_real_distribution<double> depth(0.0, depth_m);
+  for (int row = row_begin; row < row_end; ++row) {
+    for (int col = col_begin; col < col_end; ++col) {
+      const int wrapped = (col % sensor.columns + sensor.columns) % sensor.columns;
+      scan.points.push_back(cell_point(sensor, row, wrapped, range_m + depth(rng)));
+    }
+  }
+}
+
 namespace {
 
 // Slab test: distance along `dir` from `origin` to the box, or infinity.

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <random>
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/params.h"
@@ -43,5 +44,11 @@ Scan render_sweep(const SensorParams& sensor, const Scene& scene, const Eigen::I
 
 // A point on the beam of (row, col) at `range`, with ring = row.
 ScanPoint cell_point(const SensorParams& sensor, int row, int col, double range);
+
+// Scatter such as a bush's leaves: a point on every beam of rows [row_begin, row_end) and columns
+// [col_begin, col_end) (wrapped into the image), at range_m plus a uniform random depth below
+// depth_m, appended to `scan` in row-major order.
+void add_scatter(const SensorParams& sensor, int row_begin, int row_end, int col_begin, int col_end,
+                 double range_m, double depth_m, std::mt19937& rng, Scan& scan);
 
 }  // namespace adaptive_lego_loam::test

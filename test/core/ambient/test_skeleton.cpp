@@ -70,14 +70,9 @@ TEST(Skeleton, ARailsFragmentsAreSmoothAndLeavesAreNot) {
   projector.project(test::render(sensor, road), rail);
   // A bush: each beam hits a leaf at a random depth within 0.5 m.
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> depth(0.0, 0.5);
   Scan bush_scan;
   bush_scan.has_ring = true;
-  for (int row = 20; row < 40; ++row) {
-    for (int col = 880; col < 940; ++col) {
-      bush_scan.points.push_back(test::cell_point(sensor, row, col, 10.0 + depth(rng)));
-    }
-  }
+  test::add_scatter(sensor, 20, 40, 880, 940, 10.0, 0.5, rng, bush_scan);
   RangeImage bush;
   projector.project(bush_scan, bush);
 

@@ -114,14 +114,9 @@ TEST(DepthClustering, LeafScatterDroppedAt60KeptAt10) {
   const SensorParams sensor = sensor64();
   // A bush: each beam through it hits a leaf at a random depth within 0.5 m.
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> depth(0.0, 0.5);
   Scan scan;
   scan.has_ring = true;
-  for (int row = 20; row < 40; ++row) {
-    for (int col = 880; col < 940; ++col) {
-      scan.points.push_back(test::cell_point(sensor, row, col, 10.0 + depth(rng)));
-    }
-  }
+  test::add_scatter(sensor, 20, 40, 880, 940, 10.0, 0.5, rng, scan);
   const int leaves = static_cast<int>(scan.points.size());
   const int kept_at_60 = cluster_scan(sensor, scan, 60.0).labels.kept_points();
   const int kept_at_10 = cluster_scan(sensor, scan, 10.0).labels.kept_points();
@@ -179,17 +174,10 @@ TEST(DepthClustering, ExcludedCellsTakeNoPart) {
 TEST(DepthClustering, ReclusterMatchesClusteringAfresh) {
   const SensorParams sensor = sensor64();
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> depth(0.0, 0.5);
   Scan scan;
   scan.has_ring = true;
-  for (int row = 20; row < 40; ++row) {  // a bush
-    for (int col = 880; col < 940; ++col)
-      scan.points.push_back(test::cell_point(sensor, row, col, 10.0 + depth(rng)));
-  }
-  for (int row = 10; row < 50; ++row) {  // a rough wall across column 0
-    for (int col = -12; col < 12; ++col)
-      scan.points.push_back(test::cell_point(sensor, row, (col + 1800) % 1800, 15.0 + depth(rng)));
-  }
+  test::add_scatter(sensor, 20, 40, 880, 940, 10.0, 0.5, rng, scan);  // a bush
+  test::add_scatter(sensor, 10, 50, -12, 12, 15.0, 0.5, rng, scan);  // a rough wall across column 0
   RangeProjector projector(sensor);
   RangeImage image;
   projector.project(scan, image);
