@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates docs/RESULTS.md and its figures from nothing: builds, simulates every scenario (along
-# real KITTI trajectories where they fit) with both sensors and 3 seeds, runs each with beta0
+# real KITTI trajectories where they fit) with both sensors and 6 seeds, runs each with beta0
 # fixed at 10, 30 and 60 deg, adaptive and without segmentation, runs the real KITTI scans and the
 # clustering benchmark, then writes the page (scripts/experiments/). Two runs at a time.
 #   scripts/run_experiments.sh [--quick] [--data DIR] [--jobs N] [--foliage-density X]
@@ -10,7 +10,7 @@
 #     --data    the folder with kitti_odometry/ (poses/, times/, seq07_frames0-4/, first10/) and
 #               clustering_bench/; default $ALEGO_DATA
 # Raw outputs go to results/experiments/ (git-ignored; kept between runs: delete it to start over).
-# The full run's simulated scans take 16 GB there.
+# The full run's simulated scans take 32 GB there.
 set -euo pipefail
 
 quick=()

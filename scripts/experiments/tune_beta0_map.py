@@ -111,8 +111,8 @@ def main():
         args.seeds = [int(seed) for seed in args.seeds.split(",")]
     except ValueError:
         parser.error(f"--seeds {args.seeds}: expected comma-separated integers, e.g. 4,5,6")
-    if set(args.seeds) & {1, 2, 3}:
-        parser.error("seeds 1-3 are the suite's: choose the map on others")
+    if set(args.seeds) & set(suite.SUITE_SEEDS):
+        parser.error(f"seeds {suite.SUITE_SEEDS} are the suite's: choose the map on others")
     runner = suite.Runner(args)
     runner.methods = {m: suite.METHODS[m] for m in FIXED}
     runner.config_changes = {}
