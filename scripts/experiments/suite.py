@@ -15,6 +15,7 @@ import json
 import os
 import pathlib
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -46,6 +47,8 @@ CONFIG_CHANGES = {
     "adaptive skeleton share": {"fragment_smoothness_floor": "1"},
 }
 SENSORS = {"hdl64e": "kitti.yaml", "vlp16": "vlp16.yaml"}
+# What lidar_sim writes per scan (scans, labels), with a margin: 300 HDL-64E scans take 0.55 GB.
+DRIVE_BYTES_PER_SCAN = {"hdl64e": 2.0e6, "vlp16": 0.5e6}
 
 
 def scenarios(quick):
@@ -131,8 +134,11 @@ class Runner:
             times.write_text("".join(f"{t - stamps[first]:.6f}\n" for t in stamps[first:first + frames]))
         return poses, times
 
+    def drive_folder(self, name, sensor, seed):
+        return self.work / "sequences" / f"{name}_{sensor}_s{seed}"
+
     def simulate(self, name, scenario, sequence, first, frames, sensor, seed):
-        out = self.work / "sequences" / f"{name}_{sensor}_s{seed}"
+        out = self.drive_folder(name, sensor, seed)
         if (out / "poses.txt").exists():
             return out
         command = [self.bin / "lidar_sim", "--scenario", scenario, "--sensor", sensor,
@@ -199,16 +205,25 @@ class Runner:
             self.work.mkdir(parents=True, exist_ok=True)
             marker.write_text(json.dumps(settings) + "\n")
 
+    def check_disk_space(self, drives):
+        """Fails before simulating anything when the drives still to simulate would not fit."""
+        missing = [(sensor, frames) for name, _, _, _, frames, sensor, seed in drives
+                   if not (self.drive_folder(name, sensor, seed) / "poses.txt").exists()]
+        needed = sum(DRIVE_BYTES_PER_SCAN[sensor] * frames for sensor, frames in missing)
+        free = shutil.disk_usage(self.work).free
+        if needed > free:
+            raise RuntimeError(f"{len(missing)} drives to simulate need about {needed / 1e9:.1f} "
+                               f"GB but {self.work} has {free / 1e9:.1f} GB free: free some space "
+                               "there first")
+
     def simulated_suite(self, quick, seed_list=None, sensors=SENSORS):
         self.check_simulation_settings()
-        generate = []
-        for name, scenario, sequence, first, frames in scenarios(quick):
-            for sensor in sensors:
-                for seed in seed_list or seeds(quick):
-                    generate.append((f"simulate {name} {sensor} seed {seed}",
-                                     lambda a=(name, scenario, sequence, first, frames, sensor, seed):
-                                     (a, self.simulate(*a))))
-        sequences = self.parallel(generate)
+        drives = [(name, scenario, sequence, first, frames, sensor, seed)
+                  for name, scenario, sequence, first, frames in scenarios(quick)
+                  for sensor in sensors for seed in seed_list or seeds(quick)]
+        self.check_disk_space(drives)
+        sequences = self.parallel([(f"simulate {d[0]} {d[5]} seed {d[6]}",
+                                    lambda a=d: (a, self.simulate(*a))) for d in drives])
         runs = []
         for (name, _, sequence, first, frames, sensor, seed), folder in sequences:
             config = self.root / "config" / SENSORS[sensor]
