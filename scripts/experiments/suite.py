@@ -222,8 +222,12 @@ class Runner:
                   for name, scenario, sequence, first, frames in scenarios(quick)
                   for sensor in sensors for seed in seed_list or seeds(quick)]
         self.check_disk_space(drives)
-        sequences = self.parallel([(f"simulate {d[0]} {d[5]} seed {d[6]}",
-                                    lambda a=d: (a, self.simulate(*a))) for d in drives])
+        generate = []
+        for drive in drives:
+            name, *_, sensor, seed = drive
+            generate.append((f"simulate {name} {sensor} seed {seed}",
+                             lambda a=drive: (a, self.simulate(*a))))
+        sequences = self.parallel(generate)
         runs = []
         for (name, _, sequence, first, frames, sensor, seed), folder in sequences:
             config = self.root / "config" / SENSORS[sensor]
