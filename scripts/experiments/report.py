@@ -448,22 +448,23 @@ class Report:
 
     def beta0_map(self, config):
         """How a sensor's config maps mu to beta0 (ambient_filter.beta0_min/max_deg, the knots
-        mu_strict_below, mu_lenient_above and the shift mu_structure_weight/_reference with
-        fragment_smoothness_floor), e.g.
+        mu_strict_below, mu_lenient_above, the shift mu_structure_weight/_reference with
+        fragment_smoothness_floor, and mu_keep_every_cluster), e.g.
         '60 deg up to mu 0.3, 10 deg from mu 0.55, linear between'."""
         text = (self.root / "config" / config).read_text()
-        low, high, strict, lenient, weight, reference, floor = [
+        low, high, strict, lenient, weight, reference, floor, keep = [
             float(re.search(rf"^  {key}:\s*([\d.]+)", text, flags=re.M).group(1))
             for key in ("beta0_min_deg", "beta0_max_deg", "mu_strict_below", "mu_lenient_above",
                         "mu_structure_weight", "mu_structure_reference",
-                        "fragment_smoothness_floor")]
+                        "fragment_smoothness_floor", "mu_keep_every_cluster")]
         share = (f"structure share, fragments smoother than {floor:g} counted in proportion"
                  if floor < 1 else "skeleton share")
         shift = f"mu shifted by {weight:g} x ({share} - {reference:g}), then " if weight else ""
+        kept = f", every cluster kept from mu {keep:g} up" if keep <= 1 else ""
         if strict == 0 and lenient == 1:
-            return f"{shift}linear over {low:g}-{high:g} deg"
+            return f"{shift}linear over {low:g}-{high:g} deg{kept}"
         return (f"{shift}{high:g} deg up to mu {strict:g}, {low:g} deg from mu {lenient:g}, "
-                "linear between")
+                f"linear between{kept}")
 
     def beta0_maps(self):
         """The sensors' maps from mu to beta0, named once when they agree."""

@@ -35,14 +35,16 @@ METHODS = {  # name: run_sequence arguments
 # d3" is the adaptive filter with the Euclidean criterion of the paper's text (the 3-D distance)
 # and its 7 x 7 window (w 3), where the configs use the authors' range difference with w 5;
 # "adaptive 10-60" is the paper's map, linear from 60 deg at mu 0 to 10 deg at mu 1, where the
-# configs hold each end beyond a knot (docs/METHOD.md step 8), with mu from the normals alone;
+# configs hold each end beyond a knot (docs/METHOD.md step 8), with mu from the normals alone
+# and the size rule at every mu;
 # "adaptive mu alone" is the configs' map on mu from the normals alone, without the shift by the
 # structure share of the scene; "adaptive skeleton share" shifts mu by the skeleton's share alone,
 # the smooth fragments not counted as structure (docs/METHOD.md step 7).
 CONFIG_CHANGES = {
     "adaptive d3": {"euclidean_criterion": "distance", "euclidean_window": "3"},
     "adaptive 10-60": {"beta0_min_deg": "10.0", "beta0_max_deg": "60.0", "mu_strict_below": "0.0",
-                       "mu_lenient_above": "1.0", "mu_structure_weight": "0"},
+                       "mu_lenient_above": "1.0", "mu_structure_weight": "0",
+                       "mu_keep_every_cluster": "2"},
     "adaptive mu alone": {"mu_structure_weight": "0"},
     "adaptive skeleton share": {"fragment_smoothness_floor": "1"},
 }
@@ -171,13 +173,15 @@ class Runner:
         """run_sequence with `method`, then evaluate_odometry; returns both JSONs' figures."""
         config = self.method_config(config, method)
         if not (out / "metrics.json").exists():
+            # Logs beside the run's folder, named after it whole (a method may hold a dot).
             self.run([self.bin / "run_sequence", "--config", config, "--input", sequence,
-                      "--output", out, "--cpu-time"] + self.methods[method], out.with_suffix(".log"))
+                      "--output", out, "--cpu-time"] + self.methods[method],
+                     out.parent / f"{out.name}.log")
             command = [self.bin / "evaluate_odometry", "--gt", gt or sequence / "poses.txt",
                        "--est", out / "poses_kitti.txt", "--json", out / "metrics.json"]
             if calib:
                 command += ["--calib", calib]
-            self.run(command, out.with_suffix(".eval.log"))
+            self.run(command, out.parent / f"{out.name}.eval.log")
         summary = json.loads((out / "summary.json").read_text())
         metrics = json.loads((out / "metrics.json").read_text())
         kitti = metrics.get("kitti") or {}

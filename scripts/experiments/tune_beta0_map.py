@@ -8,10 +8,11 @@ and the spread of mu over its scans (mu does not depend on the map).
   tune_beta0_map.py --bin DIR --root DIR --data DIR --work DIR --sensor hdl64e|vlp16
                     [--seeds 4,5,6] [--jobs N] MAP [MAP ...]
 
-A MAP is MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE[@FLOOR]]: beta0_min_deg and
+A MAP is MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE[@FLOOR]][!KEEP]: beta0_min_deg and
 beta0_max_deg, the knots mu_strict_below and mu_lenient_above (0-1 when left out),
-mu_structure_weight and mu_structure_reference (weight 0 when left out) and
-fragment_smoothness_floor (1 when left out), e.g. 10-60:0.3-0.55 or 10-60:0.3-0.45+1.5,0.25@0.45.
+mu_structure_weight and mu_structure_reference (weight 0 when left out),
+fragment_smoothness_floor (1 when left out) and mu_keep_every_cluster (never when left out), e.g.
+10-60:0.3-0.55, 10-60:0.3-0.45+1.5,0.25@0.45 or 2-10!0.9.
 """
 
 import argparse
@@ -26,10 +27,12 @@ FIXED = ["fixed 10", "fixed 30", "fixed 60"]
 
 
 def parse_map(text):
-    """'10-60:0.3-0.55+1.5,0.25@0.45' -> ('map 10-60:0.3-0.55+1.5,0.25@0.45',
+    """'10-60:0.3-0.55+1.5,0.25@0.45!0.9' -> ('map 10-60:0.3-0.55+1.5,0.25@0.45!0.9',
     {ambient_filter key: value})."""
     try:
-        spec, _, structure = text.partition("+")
+        spec, _, keep = text.partition("!")
+        keep = float(keep) if keep else 2.0
+        spec, _, structure = spec.partition("+")
         structure, _, floor = structure.partition("@")
         weight, reference = (float(v) for v in structure.split(",")) if structure else (0.0, 0.3)
         floor = float(floor) if floor else 1.0
@@ -38,18 +41,19 @@ def parse_map(text):
         strict, lenient = (float(v) for v in knots.split("-")) if knots else (0.0, 1.0)
     except ValueError:
         raise argparse.ArgumentTypeError(f"map {text!r}: expected "
-                                         "MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE[@FLOOR]], "
-                                         "e.g. 10-60:0.3-0.55+1.5,0.25@0.45")
+                                         "MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE[@FLOOR]][!KEEP], "
+                                         "e.g. 10-60:0.3-0.55+1.5,0.25@0.45 or 2-10!0.9")
     if not (0 < low <= high < 90 and 0 <= strict < lenient <= 1 and 0 <= weight <= 10
-            and 0 <= reference <= 1 and 0 <= floor <= 1):
+            and 0 <= reference <= 1 and 0 <= floor <= 1 and 0 <= keep <= 2):
         raise argparse.ArgumentTypeError(f"map {text!r}: expected 0 < MIN <= MAX < 90, "
                                          "0 <= STRICT < LENIENT <= 1, 0 <= WEIGHT <= 10 and "
-                                         "0 <= REFERENCE, FLOOR <= 1")
+                                         "0 <= REFERENCE, FLOOR <= 1, 0 <= KEEP <= 2")
     return f"map {text}", {"beta0_min_deg": f"{low:g}", "beta0_max_deg": f"{high:g}",
                            "mu_strict_below": f"{strict:g}", "mu_lenient_above": f"{lenient:g}",
                            "mu_structure_weight": f"{weight:g}",
                            "mu_structure_reference": f"{reference:g}",
-                           "fragment_smoothness_floor": f"{floor:g}"}
+                           "fragment_smoothness_floor": f"{floor:g}",
+                           "mu_keep_every_cluster": f"{keep:g}"}
 
 
 def scan_mus(run_folder):

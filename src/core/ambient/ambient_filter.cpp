@@ -43,10 +43,12 @@ double AmbientFilterResult::skeleton_share() const {
 
 namespace {
 
+constexpr ClusterSizeRule kKeepEveryCluster{1, 1, 1};
+
 // Without segmentation every cluster is kept, however small.
 SegmentationParams segmentation_params(const Config& config) {
   SegmentationParams params = config.segmentation;
-  if (config.ambient.mode == Beta0Mode::kNone) params.size_rule = {1, 1, 1};
+  if (config.ambient.mode == Beta0Mode::kNone) params.size_rule = kKeepEveryCluster;
   return params;
 }
 
@@ -86,11 +88,18 @@ void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
   // only merge (recluster() handles either way).
   SegmentationResult& segmentation = result.segmentation;
   Stopwatch watch;
-  strict_depth_.recluster(segmentation.image, result.beta0_deg, segmenter_.params().size_rule,
+  strict_depth_.recluster(segmentation.image, result.beta0_deg, adaptive_size_rule(result.mu),
                           segmentation.clusters);
   segmentation.beta0_deg = result.beta0_deg;
   segmentation.times.add("depth_clustering", watch.lap_ms());
   segmenter_.build_cloud(scan, segmentation);
+}
+
+// A sparse sensor in a degenerate scene sees its few constraining objects (posts, distant
+// poles) as clusters below the size rule; from ambient_filter.mu_keep_every_cluster on they stay.
+ClusterSizeRule AmbientFilter::adaptive_size_rule(double mu) const {
+  if (mu >= config_.ambient.mu_keep_every_cluster) return kKeepEveryCluster;
+  return segmenter_.params().size_rule;
 }
 
 void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {

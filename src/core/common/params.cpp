@@ -227,6 +227,7 @@ void read_ambient(SectionReader& in, AmbientFilterParams& a) {
   in.number("fragment_smoothness_floor", a.fragment_smoothness_floor, 0.0, 1.0);
   in.number("fragment_smooth_tolerance_m", a.fragment_smooth_tolerance_m, 0.001, 10.0);
   in.number("mu_smoothing", a.mu_smoothing, 0.0, 0.99);
+  in.number("mu_keep_every_cluster", a.mu_keep_every_cluster, 0.0, 2.0);
   if (a.beta0_min_deg > a.beta0_max_deg) {
     in.fail("ambient_filter.beta0_min_deg", "must not exceed ambient_filter.beta0_max_deg");
   }

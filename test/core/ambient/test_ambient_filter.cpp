@@ -132,3 +132,26 @@ TEST(AmbientFilter, LargerBeta0RemovesMoreOnRealScan) {
   segmenter.cluster_and_build(scan, 60.0, result);
   EXPECT_LT(result.clusters.kept_points(), 0.9 * kept_at_10);
 }
+
+// From ambient_filter.mu_keep_every_cluster on, the adaptive filter keeps what no segmentation
+// keeps; below it, the sensor's size rule drops small clusters as before.
+TEST(AmbientFilter, FromTheKeepMuOnEveryClusterStays) {
+  const Config vlp16 = load_config(std::string(CONFIG_DIR) + "/vlp16.yaml");
+  const Scan scan = read_pcd(std::string(TEST_DATA_DIR) + "/vlp16/vlp16_indoor.pcd");
+  auto kept = [&](Beta0Mode mode, double keep_mu) {
+    Config config = vlp16;
+    config.ambient.mode = mode;
+    config.ambient.mu_keep_every_cluster = keep_mu;
+    return filter(config, scan);
+  };
+  const AmbientFilterResult never = kept(Beta0Mode::kAdaptive, 2.0);
+  ASSERT_TRUE(never.degeneration.valid);
+  const int none_points = kept(Beta0Mode::kNone, 2.0).segmentation.clusters.kept_points();
+  const AmbientFilterResult at_mu = kept(Beta0Mode::kAdaptive, never.mu);
+  const AmbientFilterResult above_mu = kept(Beta0Mode::kAdaptive, never.mu + 0.01);
+  EXPECT_LT(never.segmentation.clusters.kept_points(), none_points);
+  EXPECT_EQ(at_mu.segmentation.clusters.kept_points(), none_points);
+  EXPECT_DOUBLE_EQ(at_mu.beta0_deg, never.beta0_deg);
+  EXPECT_EQ(above_mu.segmentation.clusters.kept_points(),
+            never.segmentation.clusters.kept_points());
+}

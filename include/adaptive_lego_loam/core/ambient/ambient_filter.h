@@ -54,6 +54,7 @@ class AmbientFilter {
 
  private:
   void estimate_degeneration(AmbientFilterResult& result);
+  ClusterSizeRule adaptive_size_rule(double mu) const;
 
   Config config_;
   Segmenter segmenter_;

@@ -102,6 +102,8 @@ struct AmbientFilterParams {
   double fragment_smooth_tolerance_m = 0.05;  // second difference of range along a row
   // Step 8: exponential smoothing of mu over scans; 0 = none.
   double mu_smoothing = 0.0;
+  // Step 9: from this mu on every cluster is kept however small, as with kNone; above 1 = never.
+  double mu_keep_every_cluster = 2.0;
 };
 
 // LeGO-LOAM's feature extraction on the segmented cloud.
