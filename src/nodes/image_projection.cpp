@@ -118,6 +118,7 @@ void ImageProjectionNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
   if (!filtered_once_) return;
   status.add("mu", filtered_.mu);
   status.add("beta0 (deg)", filtered_.beta0_deg);
+  status.add("every cluster kept", filtered_.every_cluster_kept ? "yes" : "no");
   status.add("skeleton points", std::to_string(filtered_.skeleton_points));
   status.add("skeleton share", filtered_.skeleton_share());
   status.add("fragment smoothness", filtered_.fragment_smoothness);

@@ -80,7 +80,7 @@ class Outputs {
     timing << ",total,rss_mb,heap_mb\n";
     degeneration_.stream() << "frame,mu,beta0_deg,direction_x,direction_y,skeleton_points,"
                               "normals,valid,map_degenerate_directions,euclidean_points,"
-                              "fragment_smoothness,structure_share\n";
+                              "fragment_smoothness,structure_share,every_cluster_kept\n";
     localization_.stream() << "frame,state,match_ratio,alignment,inlier_ratio,inlier_mse\n";
   }
 
@@ -146,7 +146,8 @@ class Outputs {
                            << filtered.skeleton_points << "," << d.normals << "," << int(d.valid)
                            << "," << frame.mapping.degenerate_directions << ","
                            << filtered.euclidean_points << "," << filtered.fragment_smoothness
-                           << "," << filtered.structure_share << "\n";
+                           << "," << filtered.structure_share << ","
+                           << int(filtered.every_cluster_kept) << "\n";
     stamps.push_back(frame.stamp);
     for (const auto& [stage, ms] : frame.times.entries())
       stage_ms[stage].push_back(ms);

@@ -80,6 +80,7 @@ void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
     result.normals.clear();
     result.mu = 0.0;
     result.beta0_deg = ambient.mode == Beta0Mode::kNone ? 0.0 : ambient.fixed_beta0_deg;
+    result.every_cluster_kept = ambient.mode == Beta0Mode::kNone;
     segmenter_.cluster_and_build(scan, result.beta0_deg, result.segmentation);
     return;
   }
@@ -88,18 +89,16 @@ void AmbientFilter::process(const Scan& scan, AmbientFilterResult& result) {
   // only merge (recluster() handles either way).
   SegmentationResult& segmentation = result.segmentation;
   Stopwatch watch;
-  strict_depth_.recluster(segmentation.image, result.beta0_deg, adaptive_size_rule(result.mu),
-                          segmentation.clusters);
+  // A sparse sensor in a degenerate scene sees its few constraining objects (posts, distant
+  // poles) as clusters below the size rule: from mu_keep_every_cluster on they stay.
+  result.every_cluster_kept = result.mu >= ambient.mu_keep_every_cluster;
+  strict_depth_.recluster(
+      segmentation.image, result.beta0_deg,
+      result.every_cluster_kept ? kKeepEveryCluster : segmenter_.params().size_rule,
+      segmentation.clusters);
   segmentation.beta0_deg = result.beta0_deg;
   segmentation.times.add("depth_clustering", watch.lap_ms());
   segmenter_.build_cloud(scan, segmentation);
-}
-
-// A sparse sensor in a degenerate scene sees its few constraining objects (posts, distant
-// poles) as clusters below the size rule; from ambient_filter.mu_keep_every_cluster on they stay.
-ClusterSizeRule AmbientFilter::adaptive_size_rule(double mu) const {
-  if (mu >= config_.ambient.mu_keep_every_cluster) return kKeepEveryCluster;
-  return segmenter_.params().size_rule;
 }
 
 void AmbientFilter::estimate_degeneration(AmbientFilterResult& result) {

@@ -151,6 +151,9 @@ TEST(AmbientFilter, FromTheKeepMuOnEveryClusterStays) {
   const AmbientFilterResult above_mu = kept(Beta0Mode::kAdaptive, never.mu + 0.01);
   EXPECT_LT(never.segmentation.clusters.kept_points(), none_points);
   EXPECT_EQ(at_mu.segmentation.clusters.kept_points(), none_points);
+  EXPECT_TRUE(at_mu.every_cluster_kept);
+  EXPECT_FALSE(never.every_cluster_kept);
+  EXPECT_FALSE(above_mu.every_cluster_kept);
   EXPECT_DOUBLE_EQ(at_mu.beta0_deg, never.beta0_deg);
   EXPECT_EQ(above_mu.segmentation.clusters.kept_points(),
             never.segmentation.clusters.kept_points());

@@ -31,6 +31,7 @@ struct AmbientFilterResult {
   Degeneration degeneration;  // of this scan alone; degeneration.valid = false: mu unknown
   double mu = 0.0;            // after smoothing; the previous value when this scan's is unknown
   double beta0_deg = 0.0;     // threshold that cleaned this scan
+  bool every_cluster_kept = false;  // the size rule was off: mode none, or mu_keep_every_cluster
   bool adaptive = true;
 
   std::vector<ScanPoint> skeleton_cloud() const;
@@ -54,7 +55,6 @@ class AmbientFilter {
 
  private:
   void estimate_degeneration(AmbientFilterResult& result);
-  ClusterSizeRule adaptive_size_rule(double mu) const;
 
   Config config_;
   Segmenter segmenter_;
