@@ -40,9 +40,9 @@ def parse_map(text):
         low, high = (float(v) for v in ends.split("-"))
         strict, lenient = (float(v) for v in knots.split("-")) if knots else (0.0, 1.0)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"map {text!r}: expected "
-                                         "MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE[@FLOOR]][!KEEP], "
-                                         "e.g. 10-60:0.3-0.55+1.5,0.25@0.45 or 2-10!0.9")
+        raise argparse.ArgumentTypeError(
+            f"map {text!r}: expected MIN-MAX[:STRICT-LENIENT][+WEIGHT,REFERENCE[@FLOOR]][!KEEP], "
+            "e.g. 10-60:0.3-0.55+1.5,0.25@0.45 or 2-10!0.9")
     if not (0 < low <= high < 90 and 0 <= strict < lenient <= 1 and 0 <= weight <= 10
             and 0 <= reference <= 1 and 0 <= floor <= 1 and 0 <= keep <= 2):
         raise argparse.ArgumentTypeError(f"map {text!r}: expected 0 < MIN <= MAX < 90, "
