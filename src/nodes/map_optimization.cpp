@@ -320,8 +320,12 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
 
 void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) const {
   std::lock_guard<std::mutex> lock(mapping_mutex_);
-  status.add("keyframes", std::to_string(mapping_->keyframes().size()));
   if (mapping_->localizing()) {
+    // The saved map's keyframes, as when it was made: this drive's own stay out of the map.
+    const int map_keyframes = mapping_->map_keyframes();
+    status.add("keyframes", std::to_string(map_keyframes));
+    status.add("keyframes of this drive",
+               std::to_string(mapping_->keyframes().size() - map_keyframes));
     status.add("map", map_folder_);
     const std::string state = last_state_ ? to_string(*last_state_) : "waiting for a scan";
     status.add("localization", state);
@@ -331,6 +335,7 @@ void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
     }
     return;
   }
+  status.add("keyframes", std::to_string(mapping_->keyframes().size()));
   const LoopClosureCounts& loops = mapping_->loop_closure_counts();
   status.add("loops closed", std::to_string(mapping_->loops_closed()));
   status.add("loop candidates (place / radius)", std::to_string(loops.place_candidates) + " / " +

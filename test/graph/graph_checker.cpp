@@ -2,11 +2,13 @@
 // writer, then plays them in lock step (each scan once the previous one is mapped) with /clock
 // through the four stages (nodes, nodelets, or two launches), a malformed and a NaN-only cloud
 // between two good scans, and compares what comes out with the ground truth and with the
-// offline Pipeline on the same scans; then saves the map through the save_map service.
+// offline Pipeline on the same scans; then saves the map through the save_map service. With
+// ~map (test/graph/localization.test) it checks localization on that saved map instead.
 
 #include <adaptive_lego_loam/DegenerationState.h>
 #include <adaptive_lego_loam/SaveMap.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
@@ -54,6 +56,7 @@ struct Recording {
   std::map<ros::Time, DegenerationState> degeneration;
   std::vector<std::string> image_projection_warnings;
   std::vector<std::string> time_jump_warnings;  // "time went back", from any stage
+  std::vector<std::string> warnings;            // every warning, from any stage
   // The newest status of each name on /diagnostics ("image_projection: scans", ...).
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;
   std::optional<Eigen::Isometry3d> tf_map_to_sensor;  // at the last scan's stamp
@@ -150,6 +153,7 @@ class Player {
  public:
   explicit Player(Recording& recording) : recording_(recording), tf_listener_(tf_buffer_) {
     clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    initial_pose_pub_ = nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("/initialpose", 1);
     cloud_pub_ = nh_.advertise<sensor_msgs::PointCloud2>("/velodyne_points", 10);
     subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
         "/aft_mapped_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
@@ -168,6 +172,7 @@ class Player {
     subs_.push_back(nh_.subscribe<rosgraph_msgs::Log>(
         "/rosout", 100, [this](const rosgraph_msgs::LogConstPtr& m) {
           if (m->level != rosgraph_msgs::Log::WARN) return;
+          recording_.warnings.push_back(m->msg);
           if (m->msg.rfind("image_projection:", 0) == 0) {
             recording_.image_projection_warnings.push_back(m->msg);
           }
@@ -236,12 +241,23 @@ class Player {
   bool wait_for_warning(const std::string& text) {
     return wait_for(
         [&] {
-          for (const std::string& line : recording_.image_projection_warnings) {
+          for (const std::string& line : recording_.warnings) {
             if (line.find(text) != std::string::npos) return true;
           }
           return false;
         },
         10.0);
+  }
+
+  // As rviz's "2D Pose Estimate" sends it, in `frame`.
+  bool send_initial_pose(const Eigen::Isometry3d& pose, const std::string& frame) {
+    if (!wait_for([&] { return initial_pose_pub_.getNumSubscribers() > 0; }, 10.0)) return false;
+    geometry_msgs::PoseWithCovarianceStamped msg;
+    msg.header.frame_id = frame;
+    msg.header.stamp = ros::Time::now();
+    msg.pose.pose = tf2::toMsg(pose);
+    initial_pose_pub_.publish(msg);
+    return true;
   }
 
   std::optional<Eigen::Isometry3d> lookup(const std::string& target, const std::string& source,
@@ -255,7 +271,7 @@ class Player {
  private:
   Recording& recording_;
   ros::NodeHandle nh_;
-  ros::Publisher clock_pub_, cloud_pub_;
+  ros::Publisher clock_pub_, cloud_pub_, initial_pose_pub_;
   std::vector<ros::Subscriber> subs_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
@@ -501,6 +517,114 @@ TEST_F(Graph, TfChainMapOdomSensorGivesTheMappedPose) {
   ASSERT_EQ(recording_.integrated.size(), bag_.clouds.size() + 2) << "and two replayed";
   for (const auto& [stamp, pose] : recording_.integrated)
     EXPECT_LT((pose.translation() - recording_.mapped.at(stamp).translation()).norm(), 0.05);
+}
+
+// map_optimization localizing on the map run_sequence saved of the same five scans
+// (test/graph/localization.test, ~map): the scans are tracked where the map has them, the
+// diagnostics say so, and /initialpose starts it again from rviz's pose, in the map frame only.
+class Localization : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    map_dir_ = ros::NodeHandle("~").param<std::string>("map", "");
+    if (map_dir_.empty()) return;
+    map_keyframes_ = static_cast<int>(load_map(map_dir_).keyframes.size());
+    dir_ = fs::temp_directory_path() / ("alego_localization_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    bag_ = write_and_read_bag(dir_.string());
+    Player player(recording_);
+    graph_ready_ = player.wait_for_graph();
+    if (!graph_ready_) return;
+    for (const auto& cloud : bag_.clouds)
+      every_scan_mapped_ &= player.play(cloud);
+    saw_tracking_ =
+        player.wait_for_diagnostic("map_optimization: scans", "localization", "tracking");
+    saw_map_keyframes_ = player.wait_for_diagnostic("map_optimization: scans", "keyframes",
+                                                    std::to_string(map_keyframes_));
+    // rviz in another fixed frame: ignored, with a warning that names the frame to use.
+    player.send_initial_pose(kOffPose, "odom");
+    saw_wrong_frame_warning_ = player.wait_for_warning("initial pose ignored: it is in frame odom");
+    // Back at the start, 1 m and 5 deg off the truth, as a user clicks it; the first scans again,
+    // later in time.
+    restarted_ = player.send_initial_pose(kOffPose, "map");
+    for (int i = 0; i < kRestartScans; ++i) {
+      sensor_msgs::PointCloud2 cloud = bag_.clouds[i];
+      cloud.header.stamp += ros::Duration(kRestartDelay);
+      restarted_ &= player.play(cloud);
+    }
+    saw_tracking_after_restart_ =
+        player.wait_for_diagnostic("map_optimization: scans", "localization", "tracking");
+  }
+
+  static void TearDownTestSuite() {
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+
+  void SetUp() override {
+    ASSERT_FALSE(map_dir_.empty()) << "no ~map: run this suite through localization.test";
+    ASSERT_TRUE(graph_ready_) << "the nodes did not come up";
+  }
+
+  static constexpr int kRestartScans = 3;
+  static constexpr double kRestartDelay = 10.0;  // s
+  static inline const Eigen::Isometry3d kOffPose = [] {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translate(Eigen::Vector3d(1.0, 0.0, 0.0));
+    pose.rotate(Eigen::AngleAxisd(5.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
+    return pose;
+  }();
+  static inline std::string map_dir_;
+  static inline int map_keyframes_ = 0;
+  static inline fs::path dir_;
+  static inline Bag bag_;
+  static inline Recording recording_;
+  static inline bool graph_ready_ = false;
+  static inline bool every_scan_mapped_ = true;
+  static inline bool saw_tracking_ = false;
+  static inline bool saw_map_keyframes_ = false;
+  static inline bool saw_wrong_frame_warning_ = false;
+  static inline bool restarted_ = false;
+  static inline bool saw_tracking_after_restart_ = false;
+};
+
+TEST_F(Localization, EveryScanIsTrackedWhereTheMapHasIt) {
+  EXPECT_TRUE(every_scan_mapped_);
+  for (std::size_t i = 0; i < bag_.clouds.size(); ++i) {
+    const auto it = recording_.mapped.find(bag_.clouds[i].header.stamp);
+    ASSERT_NE(it, recording_.mapped.end()) << "scan " << i;
+    EXPECT_LT((it->second.translation() - bag_.truth[i].translation()).norm(), 0.05) << i;
+    EXPECT_LT(angle_between(it->second, bag_.truth[i]), 0.01) << i;
+  }
+}
+
+TEST_F(Localization, DiagnosticsSayTrackingAndCountTheSavedMapsKeyframes) {
+  EXPECT_TRUE(saw_tracking_);
+  EXPECT_TRUE(saw_map_keyframes_) << "keyframes on /diagnostics is not the map's "
+                                  << map_keyframes_;
+  const auto it = recording_.diagnostics.find("map_optimization: scans");
+  ASSERT_NE(it, recording_.diagnostics.end());
+  std::map<std::string, std::string> values;
+  for (const auto& entry : it->second.values)
+    values[entry.key] = entry.value;
+  EXPECT_EQ(values["map"], map_dir_);
+  EXPECT_FALSE(values["keyframes of this drive"].empty());
+  EXPECT_EQ(values["scans lost (total)"], "0");
+  EXPECT_EQ(values.count("loops closed"), 0u) << "no loop closes in localization";
+}
+
+TEST_F(Localization, AnInitialPoseInAnotherFrameIsIgnoredWithAWarning) {
+  EXPECT_TRUE(saw_wrong_frame_warning_);
+}
+
+TEST_F(Localization, AnInitialPoseInTheMapFrameStartsItAgain) {
+  EXPECT_TRUE(restarted_) << "the scans after the new initial pose were not all mapped";
+  EXPECT_TRUE(saw_tracking_after_restart_);
+  for (int i = 0; i < kRestartScans; ++i) {
+    const ros::Time stamp = bag_.clouds[i].header.stamp + ros::Duration(kRestartDelay);
+    const auto it = recording_.mapped.find(stamp);
+    ASSERT_NE(it, recording_.mapped.end()) << "scan " << i << " after the restart";
+    // Aligned from 1 m off back onto the map: where the truth is, not where the pose was put.
+    EXPECT_LT((it->second.translation() - bag_.truth[i].translation()).norm(), 0.05) << i;
+  }
 }
 
 // Runs a node with extra arguments (at most 20 s) and returns its exit status and output.

@@ -66,6 +66,9 @@ class LidarMapping {
 
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
   bool localizing() const { return localization_.has_value(); }
+  // Localization mode: the first this many of keyframes() are the saved map's, the rest this
+  // drive's (poses only, but for the newest few). 0 when mapping.
+  int map_keyframes() const { return localization_ ? localization_->map_keyframes() : 0; }
   // Localization mode: the next scan is aligned to the map from `pose` (a new initial pose).
   void relocalize(const Eigen::Isometry3d& pose);
   const LocalMap& local_map() const { return local_map_; }
