@@ -6,14 +6,15 @@ plays and the scans that were not mapped.
 
   source .ws/devel/setup.bash
   /usr/bin/python3 scripts/graph_cost.py --bag results/sim.bag --sensor kitti [--nodelets]
-      [--rate 0.25] [--memory-every 500] [--skip 2]
+      [--rate 0.25] [--memory-every 500] [--skip 2] [--map DIR]
 
 Prints one line per process (CPU ms per scan) and the total, the scans mapped, the latency's median
 and 95th percentile (ms) over the first and the last 500 scans, and with --memory-every N the
 resident memory (MB) of each process every N scans. With --skip N the CPU is counted from the
 moment the Nth scan is mapped (a short bag's first pair, registered from several start guesses,
 and start-up work would weigh on every scan; play it slowly, e.g. --rate 0.5, so that the moment
-falls between two scans). Starts its own roscore, the graph (use_sim_time
+falls between two scans). With --map DIR the graph localizes on that saved map instead of
+mapping. Starts its own roscore, the graph (use_sim_time
 off: the scans' stamps are the bag's) and rosbag play; at --rate 0.25 nothing is dropped.
 """
 
@@ -116,7 +117,10 @@ def main():
                         help="print each process's resident memory every this many scans")
     parser.add_argument("--skip", type=int, default=0,
                         help="count the CPU from the moment this many scans are mapped")
+    parser.add_argument("--map", default="", help="localize on this saved map (save_map's folder)")
     args = parser.parse_args()
+    if args.map and not os.path.isfile(os.path.join(args.map, "map.yaml")):
+        sys.exit(f"graph_cost: --map {args.map}: no map.yaml there (a folder save_map wrote)")
     scans = rosbag.Bag(args.bag).get_message_count("/velodyne_points")
     env = dict(os.environ)
     core = subprocess.Popen(["roscore"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
@@ -124,7 +128,8 @@ def main():
     time.sleep(3)
     graph = subprocess.Popen(
         ["roslaunch", "adaptive_lego_loam", "nodes.launch", f"sensor:={args.sensor}",
-         f"nodelets:={'true' if args.nodelets else 'false'}"],
+         f"nodelets:={'true' if args.nodelets else 'false'}"]
+        + ([f"map:={os.path.abspath(args.map)}"] if args.map else []),
         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, start_new_session=True)
     try:
         rospy.init_node("graph_cost", anonymous=True, disable_signals=True)

@@ -242,6 +242,11 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
          (drive_poses_.back().translation() - out_.pose.translation()).norm() >= 1.0)) {
       drive_poses_.push_back(out_.pose);
       drive_stamps_.push_back(group.stamp);
+      // The newest stretch only: hours of driving would otherwise grow it, and each /path with it.
+      if (drive_poses_.size() >= 2 * kPathPoses) {
+        drive_poses_.erase(drive_poses_.begin(), drive_poses_.end() - kPathPoses);
+        drive_stamps_.erase(drive_stamps_.begin(), drive_stamps_.end() - kPathPoses);
+      }
     }
     publish(group.stamp);
   }

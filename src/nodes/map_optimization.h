@@ -83,7 +83,9 @@ class MapOptimizationNode {
   ros_bridge::FrameNames frames_;
   std::string sensor_frame_;
   long mapped_scans_ = 0;
-  // rviz's path when localizing: this drive's poses, one a metre (the keyframes when mapping).
+  // rviz's path when localizing: this drive's poses, one a metre, the newest kPathPoses to
+  // 2 kPathPoses of them (the keyframes when mapping).
+  static constexpr std::size_t kPathPoses = 10000;
   std::vector<Eigen::Isometry3d> drive_poses_;
   std::vector<ros::Time> drive_stamps_;
   std::optional<ros::Time> last_stamp_;

@@ -21,6 +21,17 @@ void LocalMap::Placement::take_out(int keyframe) {
   placed.erase(found);
 }
 
+void LocalMap::Placement::keyframes_removed(int first, int count) {
+  for (int index = first; index < first + count; ++index) {
+    if (holds(index)) take_out(index);
+  }
+  // In increasing order: each moves below every key not yet moved, so none is overwritten.
+  for (auto it = placed.lower_bound(first + count); it != placed.end();) {
+    placed.emplace(it->first - count, std::move(it->second));
+    it = placed.erase(it);
+  }
+}
+
 void LocalMap::Placement::clear() {
   corners.clear();
   surfaces.clear();
@@ -92,6 +103,11 @@ bool LocalMap::update(const std::vector<Keyframe>& keyframes, const Eigen::Vecto
   replacing_ = false;
   to_placement_ = Eigen::Isometry3d::Identity();
   return true;
+}
+
+void LocalMap::keyframes_removed(int first, int count) {
+  active_.keyframes_removed(first, count);
+  replacement_.keyframes_removed(first, count);
 }
 
 void LocalMap::keyframes_moved(const Eigen::Isometry3d& correction) {

@@ -70,6 +70,23 @@ void LidarMapping::retire_recent_keyframes(int keep) {
   }
 }
 
+// The drive's retired keyframes go, but for the newest local_map_lag_keyframes + 1 positions of the
+// list (the local map's choice starts below them, and needs_keyframe() looks at the newest): what
+// localization holds stays the same over hours, and the local map chooses as before.
+void LidarMapping::drop_retired_keyframes() {
+  const int first_own = localization_->map_keyframes();
+  const int size = static_cast<int>(keyframes_.size());
+  const int kept_newest = std::min(params_.local_map_lag_keyframes, size - 1) + 1;
+  int retired = 0;
+  while (first_own + retired < size - kept_newest && !keyframes_[first_own + retired].has_clouds())
+    ++retired;
+  if (retired == 0) return;
+  keyframes_.erase(keyframes_.begin() + first_own, keyframes_.begin() + first_own + retired);
+  for (int i = first_own; i < static_cast<int>(keyframes_.size()); ++i)
+    keyframes_[i].index = i;
+  local_map_.keyframes_removed(first_own, retired);
+}
+
 void LidarMapping::start_loop_closure(double stamp) {
   const int newest = static_cast<int>(keyframes_.size()) - 1;
   if (keyframes_[newest].degenerate) return;
@@ -218,6 +235,7 @@ void LidarMapping::add_keyframe(const FeatureSet& features, double stamp, bool d
   if (localization_) {
     keyframes_.push_back(std::move(keyframe));
     retire_recent_keyframes(localization_params_.recent_keyframes);
+    drop_retired_keyframes();
     return;
   }
   if (loop_params_.enabled && loop_params_.place.enabled && !degenerate) {
@@ -299,8 +317,9 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
     fusion_.update_mapping(odometry_pose, pose_);
   }
   if (keeps_trajectory_) {
-    if (keyframes_.empty()) {
-      anchors_.emplace_back(-1, pose_);  // no keyframe yet: the pose itself
+    // No keyframe yet, or localization (its own keyframes go, the map's never move): the pose.
+    if (keyframes_.empty() || localization_) {
+      anchors_.emplace_back(-1, pose_);
     } else {
       const Keyframe& anchor = keyframes_.back();
       anchors_.emplace_back(anchor.index, anchor.pose.inverse() * pose_);

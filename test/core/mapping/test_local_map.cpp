@@ -75,6 +75,23 @@ TEST(LocalMap, FollowsTheKeyframesNearIt) {
   EXPECT_FALSE(map.update(keyframes, Eigen::Vector3d(2.0, 0.0, 0.0)));
 }
 
+TEST(LocalMap, KeyframesRemovedFromTheListLeaveTheMapAndTheOthersStayPlaced) {
+  MappingParams params;
+  params.local_map_lag_keyframes = 0;
+  LocalMap map(params);
+  std::vector<Keyframe> keyframes = keyframes_along_x(6);
+  map.update(keyframes, Eigen::Vector3d::Zero());
+  // Keyframes 2 and 3 go; 4 and 5 become 2 and 3.
+  keyframes.erase(keyframes.begin() + 2, keyframes.begin() + 4);
+  for (int i = 0; i < static_cast<int>(keyframes.size()); ++i)
+    keyframes[i].index = i;
+  map.keyframes_removed(2, 2);
+  EXPECT_EQ(map_xs(map), std::vector<float>({0.f, 1.f, 4.f, 5.f}));
+  // Nothing to put in or take out: the renumbered keyframes are the ones placed.
+  EXPECT_FALSE(map.update(keyframes, Eigen::Vector3d::Zero()));
+  EXPECT_EQ(map_xs(map), std::vector<float>({0.f, 1.f, 4.f, 5.f}));
+}
+
 TEST(LocalMap, AfterALoopAnswersFromTheOldPlacementUntilTheNewOneIsComplete) {
   MappingParams params;
   params.local_map_lag_keyframes = 0;

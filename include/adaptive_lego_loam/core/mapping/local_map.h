@@ -32,6 +32,10 @@ class LocalMap {
   // keyframes are placed again from their new poses over the next updates, a few at a time, and
   // until then queries go to the old placement through to_placement().
   void keyframes_moved(const Eigen::Isometry3d& correction);
+  // Keyframes [first, first + count) left the keyframe list and the later ones moved down by
+  // `count` (localization lets its drive's old keyframes go): those removed leave the map, the
+  // others keep their places under their new indices.
+  void keyframes_removed(int first, int count);
   // From the map frame to the frame the map's points are in (identity but while placing again).
   const Eigen::Isometry3d& to_placement() const { return to_placement_; }
 
@@ -57,6 +61,7 @@ class LocalMap {
     void take_out(int keyframe);
     bool holds(int keyframe) const { return placed.count(keyframe) > 0; }
     void clear();
+    void keyframes_removed(int first, int count);
 
     VoxelMap corners, surfaces;
     std::map<int, Placed> placed;

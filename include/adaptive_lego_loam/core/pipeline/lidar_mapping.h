@@ -102,6 +102,8 @@ class LidarMapping {
                 Eigen::Isometry3d& pose, MappingOutput& out);
   // This drive's keyframes but the newest `keep` give their clouds back (localization mode).
   void retire_recent_keyframes(int keep);
+  // ... and then leave the list (localization mode).
+  void drop_retired_keyframes();
   // A loop-closure attempt starts with a new keyframe that has a loop candidate, at most once a
   // second of data (LeGO-LOAM's rate) and one at a time; every scan then runs one bounded step of
   // it: the detection's, then, when accepted, the pose graph's. Returns the attempt on the scan
