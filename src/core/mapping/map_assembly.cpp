@@ -67,7 +67,8 @@ CloudPtr assemble_map(const std::vector<Keyframe>& keyframes, MapLayer layer, do
     return map;
   }
   // A tile at a time, each keyframe unpacked for every tile it reaches: the voxel sums of the
-  // whole map (tens of bytes a voxel, and twice that while their table grows) never exist at once.
+  // whole map (100 bytes or more a voxel, half as much again while their table grows) never exist
+  // at once.
   const Tiling tiling(leaf);
   VoxelSums sums(leaf);
   Cloud placed, in_tile;
