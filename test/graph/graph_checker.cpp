@@ -57,6 +57,7 @@ struct Recording {
   std::vector<std::string> image_projection_warnings;
   std::vector<std::string> time_jump_warnings;  // "time went back", from any stage
   std::vector<std::string> warnings;            // every warning, from any stage
+  std::vector<std::string> infos;               // every info line, from any stage
   // The newest status of each name on /diagnostics ("image_projection: scans", ...).
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;
   std::optional<Eigen::Isometry3d> tf_map_to_sensor;  // at the last scan's stamp
@@ -171,6 +172,7 @@ class Player {
     // Matched by the message's prefix: a nodelet logs under its manager's node name.
     subs_.push_back(nh_.subscribe<rosgraph_msgs::Log>(
         "/rosout", 100, [this](const rosgraph_msgs::LogConstPtr& m) {
+          if (m->level == rosgraph_msgs::Log::INFO) recording_.infos.push_back(m->msg);
           if (m->level != rosgraph_msgs::Log::WARN) return;
           recording_.warnings.push_back(m->msg);
           if (m->msg.rfind("image_projection:", 0) == 0) {
@@ -239,9 +241,15 @@ class Player {
   }
 
   bool wait_for_warning(const std::string& text) {
+    return wait_for_line(recording_.warnings, text);
+  }
+  bool wait_for_info(const std::string& text) { return wait_for_line(recording_.infos, text); }
+
+  // Waits until a line of `lines` holds `text`.
+  bool wait_for_line(const std::vector<std::string>& lines, const std::string& text) {
     return wait_for(
         [&] {
-          for (const std::string& line : recording_.warnings) {
+          for (const std::string& line : lines) {
             if (line.find(text) != std::string::npos) return true;
           }
           return false;
@@ -540,12 +548,14 @@ class Localization : public ::testing::Test {
         player.wait_for_diagnostic("map_optimization: scans", "localization", "tracking");
     saw_map_keyframes_ = player.wait_for_diagnostic("map_optimization: scans", "keyframes",
                                                     std::to_string(map_keyframes_));
+    tracking_status_ = recording_.diagnostics["map_optimization: scans"];
     // rviz in another fixed frame: ignored, with a warning that names the frame to use.
     player.send_initial_pose(kOffPose, "odom");
     saw_wrong_frame_warning_ = player.wait_for_warning("initial pose ignored: it is in frame odom");
     // Back at the start, 1 m and 5 deg off the truth, as a user clicks it; the first scans again,
     // later in time.
-    restarted_ = player.send_initial_pose(kOffPose, "map");
+    restarted_ = player.send_initial_pose(kOffPose, "map") &&
+                 player.wait_for_info("new initial pose (1.00, 0.00, 0.00)");
     for (int i = 0; i < kRestartScans; ++i) {
       sensor_msgs::PointCloud2 cloud = bag_.clouds[i];
       cloud.header.stamp += ros::Duration(kRestartDelay);
@@ -553,6 +563,22 @@ class Localization : public ::testing::Test {
     }
     saw_tracking_after_restart_ =
         player.wait_for_diagnostic("map_optimization: scans", "localization", "tracking");
+    // 500 m from anything the map holds (beyond localization.search_radius): no alignment can
+    // succeed, and after localization.lost_after_scans scans it says it is lost.
+    Eigen::Isometry3d far_away = Eigen::Isometry3d::Identity();
+    far_away.translation().x() = 500.0;
+    sent_far_away_ = player.send_initial_pose(far_away, "map") &&
+                     player.wait_for_info("new initial pose (500.00, 0.00, 0.00)");
+    for (int round = 0; round < 2; ++round) {
+      for (const auto& scan : bag_.clouds) {
+        sensor_msgs::PointCloud2 cloud = scan;
+        cloud.header.stamp += ros::Duration((2 + round) * kRestartDelay);
+        player.play(cloud);
+      }
+    }
+    saw_lost_warning_ = player.wait_for_warning("map_optimization: localization lost");
+    saw_lost_in_diagnostics_ =
+        player.wait_for_diagnostic("map_optimization: scans", "localization", "lost");
   }
 
   static void TearDownTestSuite() {
@@ -584,6 +610,10 @@ class Localization : public ::testing::Test {
   static inline bool saw_wrong_frame_warning_ = false;
   static inline bool restarted_ = false;
   static inline bool saw_tracking_after_restart_ = false;
+  static inline diagnostic_msgs::DiagnosticStatus tracking_status_;  // before the restarts
+  static inline bool sent_far_away_ = false;
+  static inline bool saw_lost_warning_ = false;
+  static inline bool saw_lost_in_diagnostics_ = false;
 };
 
 TEST_F(Localization, EveryScanIsTrackedWhereTheMapHasIt) {
@@ -600,11 +630,11 @@ TEST_F(Localization, DiagnosticsSayTrackingAndCountTheSavedMapsKeyframes) {
   EXPECT_TRUE(saw_tracking_);
   EXPECT_TRUE(saw_map_keyframes_) << "keyframes on /diagnostics is not the map's "
                                   << map_keyframes_;
-  const auto it = recording_.diagnostics.find("map_optimization: scans");
-  ASSERT_NE(it, recording_.diagnostics.end());
   std::map<std::string, std::string> values;
-  for (const auto& entry : it->second.values)
+  for (const auto& entry : tracking_status_.values)
     values[entry.key] = entry.value;
+  EXPECT_EQ(tracking_status_.level, diagnostic_msgs::DiagnosticStatus::OK)
+      << tracking_status_.message;
   EXPECT_EQ(values["map"], map_dir_);
   EXPECT_FALSE(values["keyframes of this drive"].empty());
   EXPECT_EQ(values["scans lost (total)"], "0");
@@ -624,6 +654,19 @@ TEST_F(Localization, AnInitialPoseInTheMapFrameStartsItAgain) {
     ASSERT_NE(it, recording_.mapped.end()) << "scan " << i << " after the restart";
     // Aligned from 1 m off back onto the map: where the truth is, not where the pose was put.
     EXPECT_LT((it->second.translation() - bag_.truth[i].translation()).norm(), 0.05) << i;
+  }
+}
+
+TEST_F(Localization, FarFromTheMapItSaysItIsLostInTheLogAndOnDiagnostics) {
+  ASSERT_TRUE(sent_far_away_) << "map_optimization did not take the far initial pose";
+  EXPECT_TRUE(saw_lost_warning_);
+  EXPECT_TRUE(saw_lost_in_diagnostics_);
+  const diagnostic_msgs::DiagnosticStatus& status =
+      recording_.diagnostics["map_optimization: scans"];
+  EXPECT_EQ(status.level, diagnostic_msgs::DiagnosticStatus::ERROR);
+  EXPECT_NE(status.message.find("localization lost"), std::string::npos) << status.message;
+  for (const auto& entry : status.values) {
+    if (entry.key == "scans lost (total)") EXPECT_NE(entry.value, "0");
   }
 }
 
