@@ -150,6 +150,14 @@ Eigen::Isometry3d pose_of(const nav_msgs::Odometry& msg) {
   return ros_bridge::pose_from_ros(msg.pose.pose, "test");
 }
 
+// A /diagnostics status's key-value pairs.
+std::map<std::string, std::string> values_of(const diagnostic_msgs::DiagnosticStatus& status) {
+  std::map<std::string, std::string> values;
+  for (const auto& entry : status.values)
+    values[entry.key] = entry.value;
+  return values;
+}
+
 class Player {
  public:
   explicit Player(Recording& recording) : recording_(recording), tf_listener_(tf_buffer_) {
@@ -196,10 +204,9 @@ class Player {
         [&] {
           const auto it = recording_.diagnostics.find(name);
           if (it == recording_.diagnostics.end()) return false;
-          for (const auto& entry : it->second.values) {
-            if (entry.key == key) return entry.value == value;
-          }
-          return false;
+          const auto values = values_of(it->second);
+          const auto entry = values.find(key);
+          return entry != values.end() && entry->second == value;
         },
         10.0);
   }
@@ -472,9 +479,7 @@ TEST_F(Graph, DiagnosticsCountTheDroppedClouds) {
   EXPECT_TRUE(saw_dropped_in_diagnostics_);
   const auto it = recording_.diagnostics.find("image_projection: scans");
   ASSERT_NE(it, recording_.diagnostics.end()) << "no image_projection status on /diagnostics";
-  std::map<std::string, std::string> values;
-  for (const auto& entry : it->second.values)
-    values[entry.key] = entry.value;
+  std::map<std::string, std::string> values = values_of(it->second);
   EXPECT_EQ(values["scans dropped (total)"], "2");
   EXPECT_EQ(values["beta0 mode"], "adaptive");
   EXPECT_FALSE(values["mu"].empty());
@@ -630,9 +635,7 @@ TEST_F(Localization, DiagnosticsSayTrackingAndCountTheSavedMapsKeyframes) {
   EXPECT_TRUE(saw_tracking_);
   EXPECT_TRUE(saw_map_keyframes_) << "keyframes on /diagnostics is not the map's "
                                   << map_keyframes_;
-  std::map<std::string, std::string> values;
-  for (const auto& entry : tracking_status_.values)
-    values[entry.key] = entry.value;
+  std::map<std::string, std::string> values = values_of(tracking_status_);
   EXPECT_EQ(values["map"], map_dir_);
   EXPECT_FALSE(values["keyframes of this drive"].empty());
   EXPECT_EQ(values["scans lost (total)"], "0");
@@ -663,9 +666,9 @@ TEST_F(Localization, FarFromTheMapItSaysItIsLostInTheLogAndOnDiagnostics) {
       recording_.diagnostics["map_optimization: scans"];
   EXPECT_EQ(status.level, diagnostic_msgs::DiagnosticStatus::ERROR);
   EXPECT_NE(status.message.find("localization lost"), std::string::npos) << status.message;
-  for (const auto& entry : status.values) {
-    if (entry.key == "scans lost (total)") EXPECT_NE(entry.value, "0");
-  }
+  const std::string lost = values_of(status)["scans lost (total)"];
+  EXPECT_FALSE(lost.empty());
+  EXPECT_NE(lost, "0");
 }
 
 // Runs a node with extra arguments (at most 20 s) and returns its exit status and output.

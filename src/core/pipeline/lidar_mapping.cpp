@@ -72,7 +72,8 @@ void LidarMapping::retire_recent_keyframes(int keep) {
 
 // The drive's retired keyframes go, but for the newest local_map_lag_keyframes + 1 positions of the
 // list (the local map's choice starts below them, and needs_keyframe() looks at the newest): what
-// localization holds stays the same over hours, and the local map chooses as before.
+// localization holds stays the same over hours, and the local map chooses the same keyframes as it
+// would with them kept.
 void LidarMapping::drop_retired_keyframes() {
   const int first_own = localization_->map_keyframes();
   const int size = static_cast<int>(keyframes_.size());
