@@ -9,8 +9,8 @@ import re
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-STAGES = ["common", "spatial", "projection", "clustering", "ambient", "odometry", "mapping",
-          "loop_closure", "pipeline"]
+STAGES = ["common", "spatial", "projection", "clustering", "ambient", "motion_sensors",
+          "odometry", "mapping", "loop_closure", "pipeline"]
 SHARED = {"common", "spatial"}
 INCLUDE = re.compile(r'#include [<"]adaptive_lego_loam/([a-z_]+)/(?:([a-z_]+)/)?[a-z_]+\.h[>"]')
 OUTSIDE = re.compile(r"\.\./shared|/work/|/home/[a-z]")

@@ -367,6 +367,45 @@ void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
   in.reject_unknown_keys();
 }
 
+// A list of exactly three numbers.
+void read_triple(SectionReader& in, const char* key, std::vector<double>& values, double lo,
+                 double hi, const std::string& section) {
+  in.list(key, values, lo, hi);
+  if (values.size() != 3) {
+    in.fail(section + "." + key,
+            "expected a list of three numbers, found " + std::to_string(values.size()));
+  }
+}
+
+void read_imu(SectionReader& in, ImuParams& imu) {
+  read_triple(in, "extrinsic_rpy_deg", imu.extrinsic_rpy_deg, -360.0, 360.0, "imu");
+  read_triple(in, "extrinsic_xyz_m", imu.extrinsic_xyz_m, -100.0, 100.0, "imu");
+  in.number("time_offset_s", imu.time_offset_s, -10.0, 10.0);
+  in.number("gyro_noise_density", imu.gyro_noise_density, 1e-9, 1.0);
+  in.number("accel_noise_density", imu.accel_noise_density, 1e-9, 10.0);
+  in.number("gyro_bias_random_walk", imu.gyro_bias_random_walk, 0.0, 1.0);
+  in.number("accel_bias_random_walk", imu.accel_bias_random_walk, 0.0, 10.0);
+  in.number("gyro_bias_sigma", imu.gyro_bias_sigma, 1e-9, 1.0);
+  in.number("accel_bias_sigma", imu.accel_bias_sigma, 1e-9, 10.0);
+  in.number("gravity", imu.gravity, 9.7, 9.9);
+  in.number("max_gap_s", imu.max_gap_s, 0.001, 10.0);
+  in.number("max_angular_velocity", imu.max_angular_velocity, 0.1, 1000.0);
+  in.number("max_acceleration", imu.max_acceleration, 1.0, 10000.0);
+  in.reject_unknown_keys();
+}
+
+void read_wheel_odometry(SectionReader& in, WheelOdometryParams& wheel) {
+  read_triple(in, "extrinsic_rpy_deg", wheel.extrinsic_rpy_deg, -360.0, 360.0, "wheel_odometry");
+  read_triple(in, "extrinsic_xyz_m", wheel.extrinsic_xyz_m, -100.0, 100.0, "wheel_odometry");
+  in.number("time_offset_s", wheel.time_offset_s, -10.0, 10.0);
+  in.number("speed_sigma", wheel.speed_sigma, 1e-6, 100.0);
+  in.number("yaw_rate_sigma_deg", wheel.yaw_rate_sigma_deg, 1e-6, 1000.0);
+  in.number("max_gap_s", wheel.max_gap_s, 0.001, 10.0);
+  in.number("max_speed", wheel.max_speed, 0.1, 1000.0);
+  in.number("max_yaw_rate_deg", wheel.max_yaw_rate_deg, 0.1, 36000.0);
+  in.reject_unknown_keys();
+}
+
 void read_clustering_benchmark(SectionReader& in, ClusteringBenchmarkParams& b) {
   in.number("min_cluster_points", b.min_cluster_points, 1, 1000000);
   in.reject_unknown_keys();
@@ -442,12 +481,17 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
   read_saved_map(saved_map, config.saved_map);
   SectionReader benchmark = section("clustering_benchmark");
   read_clustering_benchmark(benchmark, config.clustering_benchmark);
+  SectionReader imu = section("imu");
+  read_imu(imu, config.imu);
+  SectionReader wheel_odometry = section("wheel_odometry");
+  read_wheel_odometry(wheel_odometry, config.wheel_odometry);
 
   for (const auto& entry : root) {
     const std::string name = key_name(entry.first, source, "(top level)");
     static const std::set<std::string> known = {
-        "sensor",  "segmentation", "ambient_filter", "features",  "odometry",
-        "mapping", "loop_closure", "localization",   "saved_map", "clustering_benchmark"};
+        "sensor",  "segmentation",  "ambient_filter", "features",  "odometry",
+        "mapping", "loop_closure",  "localization",   "saved_map", "clustering_benchmark",
+        "imu",     "wheel_odometry"};
     if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
   }
   validate(config.sensor, source);

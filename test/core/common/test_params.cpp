@@ -192,3 +192,23 @@ TEST(Params, KeyThatIsAListIsAConfigError) {
   EXPECT_NE(error.find("test.yaml: sensor: the key at line 1 is not a name"), std::string::npos)
       << error;
 }
+
+TEST(Params, MotionSensorSectionsAreOptionalAndChecked) {
+  const Config plain = parse_config(kMinimal, "test.yaml");
+  EXPECT_EQ(plain.imu.extrinsic_xyz_m, std::vector<double>({0.0, 0.0, 0.0}));
+  const Config mounted = parse_config(
+      std::string(kMinimal) +
+          "imu:\n  extrinsic_rpy_deg: [180, 0, 90]\n  extrinsic_xyz_m: [0.1, -0.05, -0.2]\n"
+          "  time_offset_s: 0.002\nwheel_odometry:\n  extrinsic_xyz_m: [-0.8, 0, -1.73]\n",
+      "test.yaml");
+  EXPECT_EQ(mounted.imu.extrinsic_rpy_deg, std::vector<double>({180.0, 0.0, 90.0}));
+  EXPECT_DOUBLE_EQ(mounted.imu.time_offset_s, 0.002);
+  EXPECT_DOUBLE_EQ(mounted.wheel_odometry.extrinsic_xyz_m[2], -1.73);
+
+  std::string error = error_of(std::string(kMinimal) + "imu:\n  extrinsic_xyz_m: [0.1, 0.2]\n");
+  EXPECT_NE(error.find("imu.extrinsic_xyz_m: expected a list of three numbers, found 2"),
+            std::string::npos)
+      << error;
+  error = error_of(std::string(kMinimal) + "wheel_odometry:\n  scale: 1.02\n");
+  EXPECT_NE(error.find("wheel_odometry.scale: is not a known key"), std::string::npos) << error;
+}

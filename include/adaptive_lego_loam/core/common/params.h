@@ -199,6 +199,46 @@ struct MappingParams {
   int max_gated_scans = 0;
 };
 
+// An optional IMU (core/motion_sensors/): used only when a run is given its samples. Noise
+// densities and bias random walks are continuous-time values (docs/SENSORS.md names the
+// datasheet the defaults come from).
+struct ImuParams {
+  // The IMU's pose in the LiDAR frame (the transform lidar -> imu): roll, pitch, yaw (deg, applied
+  // as R = Rz(yaw) Ry(pitch) Rx(roll)) and translation (m). A node takes it from TF when a static
+  // transform exists.
+  std::vector<double> extrinsic_rpy_deg{0.0, 0.0, 0.0};
+  std::vector<double> extrinsic_xyz_m{0.0, 0.0, 0.0};
+  double time_offset_s = 0.0;          // added to the IMU's stamps to put them on the LiDAR's clock
+  double gyro_noise_density = 1.7e-4;  // rad/s/sqrt(Hz)
+  double accel_noise_density = 2.0e-3;     // m/s^2/sqrt(Hz)
+  double gyro_bias_random_walk = 2.0e-5;   // rad/s^2/sqrt(Hz)
+  double accel_bias_random_walk = 3.0e-3;  // m/s^3/sqrt(Hz)
+  // 1-sigma of the biases at start-up (before the filter has seen any motion).
+  double gyro_bias_sigma = 0.005;  // rad/s
+  double accel_bias_sigma = 0.1;   // m/s^2
+  double gravity = 9.81;           // m/s^2
+  // Samples further apart than this leave a gap: the scans it touches fall back to LiDAR-only.
+  double max_gap_s = 0.05;
+  // Samples beyond these are not a vehicle's motion but a fault: dropped and counted.
+  double max_angular_velocity = 35.0;  // rad/s (2000 deg/s, a MEMS gyro's largest range)
+  double max_acceleration = 160.0;     // m/s^2 (16 g)
+};
+
+// An optional wheel odometry (core/motion_sensors/): the twist of the vehicle's base frame.
+struct WheelOdometryParams {
+  // The base frame's pose in the LiDAR frame (the transform lidar -> base), as ImuParams. A node
+  // takes it from TF when a static transform exists.
+  std::vector<double> extrinsic_rpy_deg{0.0, 0.0, 0.0};
+  std::vector<double> extrinsic_xyz_m{0.0, 0.0, 0.0};
+  double time_offset_s = 0.0;
+  // 1-sigma errors when a message reports no variance.
+  double speed_sigma = 0.05;        // m/s
+  double yaw_rate_sigma_deg = 1.0;  // deg/s
+  double max_gap_s = 0.2;           // s
+  double max_speed = 70.0;          // m/s: faster is a fault, dropped and counted
+  double max_yaw_rate_deg = 360.0;  // deg/s
+};
+
 // Robust loss on a pose-graph edge's whitened residual norm |r| (in sigmas). kHuber: quadratic up
 // to |r| = scale, linear beyond. kCauchy: scale^2 * log(1 + |r|^2 / scale^2), whose pull on the
 // poses fades once |r| is well beyond scale.
@@ -331,6 +371,8 @@ struct Config {
   LocalizationParams localization;
   SavedMapParams saved_map;
   ClusteringBenchmarkParams clustering_benchmark;
+  ImuParams imu;
+  WheelOdometryParams wheel_odometry;
 };
 
 // Loads and checks a config file. Throws ConfigError naming the file, the key and the allowed
