@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,15 +16,18 @@
 #include <optional>
 
 #include "adaptive_lego_loam/core/common/scan_stamps.h"
+#include "adaptive_lego_loam/core/odometry/observability.h"
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
 #include "adaptive_lego_loam/io/atomic_files.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/map_files.h"
+#include "adaptive_lego_loam/io/motion_sensor_files.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/process_memory.h"
 #include "adaptive_lego_loam/io/progress.h"
 #include "adaptive_lego_loam/io/scan_sequence.h"
 #include "adaptive_lego_loam/ros/bag_sequence.h"
+#include "adaptive_lego_loam/ros/motion_sensor_conversions.h"
 #include "tool_main.h"
 
 using namespace adaptive_lego_loam;
@@ -35,9 +39,10 @@ namespace {
 const std::vector<std::string> kStages = {
     "projection",       "ground",          "euclidean_clustering",
     "skeleton",         "normals",         "degeneration",
-    "depth_clustering", "segmented_cloud", "deskew",
-    "features",         "odometry",        "local_map",
-    "mapping",          "keyframes",       "loop_closure"};
+    "depth_clustering", "segmented_cloud", "motion_sensors",
+    "deskew",           "features",        "odometry",
+    "local_map",        "mapping",         "keyframes",
+    "loop_closure"};
 
 struct Options {
   std::string config, input, topic, output;
@@ -49,7 +54,96 @@ struct Options {
   bool skip_bad_scans = false;
   std::string save_map, localize;
   std::vector<double> initial_pose;  // x, y, z, yaw in degrees
+  std::string imu, wheel_odom, imu_topic, wheel_odom_topic;
 };
+
+// The optional motion sensors' samples, from CSV files or the bag, handed to the pipeline in
+// their order up to each scan's stamp (on the scans' clock: the config's time offsets applied),
+// as a node hands them over before it processes the scan. A fault is logged once per input and
+// kind; all are counted in summary.json.
+class MotionSensorFeed {
+ public:
+  MotionSensorFeed(const Options& options, const Config& config)
+      : imu_offset_(config.imu.time_offset_s), wheel_offset_(config.wheel_odometry.time_offset_s) {
+    if (!options.imu.empty()) imu_ = read_imu_csv(options.imu);
+    if (!options.imu_topic.empty()) imu_ = ros_bridge::read_bag_imu(options.input, options.imu_topic);
+    if (!options.wheel_odom.empty()) wheel_ = read_wheel_odometry_csv(options.wheel_odom);
+    if (!options.wheel_odom_topic.empty()) {
+      wheel_ = ros_bridge::read_bag_wheel_odometry(options.input, options.wheel_odom_topic);
+    }
+  }
+
+  std::string describe() const {
+    std::string text;
+    if (!imu_.empty()) text += ", IMU " + std::to_string(imu_.size()) + " samples";
+    if (!wheel_.empty()) text += ", wheel odometry " + std::to_string(wheel_.size()) + " samples";
+    return text;
+  }
+
+  void feed_until(double stamp, Pipeline& pipeline) {
+    for (; next_imu_ < imu_.size() && imu_[next_imu_].stamp + imu_offset_ <= stamp; ++next_imu_) {
+      report("IMU", imu_[next_imu_].stamp, pipeline.add_imu(imu_[next_imu_]), imu_reported_);
+    }
+    for (; next_wheel_ < wheel_.size() && wheel_[next_wheel_].stamp + wheel_offset_ <= stamp;
+         ++next_wheel_) {
+      report("wheel odometry", wheel_[next_wheel_].stamp,
+             pipeline.add_wheel_odometry(wheel_[next_wheel_]), wheel_reported_);
+    }
+  }
+
+ private:
+  static void report(const char* input, double stamp, std::optional<SampleFault> fault,
+                     std::array<bool, kSampleFaultKinds>& reported) {
+    if (!fault || reported[static_cast<int>(*fault)]) return;
+    reported[static_cast<int>(*fault)] = true;
+    std::fprintf(stderr,
+                 "\nrun_sequence: warning: %s sample at %.6f s dropped: %s (further ones are "
+                 "counted in summary.json)\n",
+                 input, stamp, to_string(*fault));
+  }
+
+  double imu_offset_, wheel_offset_;
+  std::vector<ImuSample> imu_;
+  std::vector<WheelOdometrySample> wheel_;
+  std::size_t next_imu_ = 0, next_wheel_ = 0;
+  std::array<bool, kSampleFaultKinds> imu_reported_{}, wheel_reported_{};
+};
+
+nlohmann::json input_status(const InputStatus& input) {
+  nlohmann::json faults;
+  for (int kind = 0; kind < kSampleFaultKinds; ++kind)
+    faults[to_string(static_cast<SampleFault>(kind))] = input.faults[kind];
+  return {{"accepted", input.accepted},
+          {"dropped", input.dropped()},
+          {"faults", faults},
+          {"gaps", input.gaps},
+          {"latest_gap_s", input.latest_gap_s},
+          {"rate_hz", input.rate_hz}};
+}
+
+nlohmann::json motion_sensors_summary(const MotionSensorsStatus& status) {
+  nlohmann::json summary;
+  if (status.imu.accepted + status.imu.dropped() > 0) {
+    summary["imu"] = input_status(status.imu);
+    summary["imu"]["scans_used"] = status.imu_scans;
+    summary["imu"]["scans_lidar_only"] = status.imu_fallbacks;
+    summary["imu"]["restarts"] = status.imu_restarts;
+    summary["imu"]["lidar_motions_refused"] = status.lidar_rejections;
+    summary["imu"]["gyro_bias_rad_s"] = {status.gyro_bias.x(), status.gyro_bias.y(),
+                                         status.gyro_bias.z()};
+    summary["imu"]["accel_bias_m_s2"] = {status.accel_bias.x(), status.accel_bias.y(),
+                                         status.accel_bias.z()};
+  }
+  if (status.wheel.accepted + status.wheel.dropped() > 0) {
+    summary["wheel_odometry"] = input_status(status.wheel);
+    summary["wheel_odometry"]["scans_used"] = status.wheel_scans;
+    summary["wheel_odometry"]["scans_lidar_only"] = status.wheel_fallbacks;
+    summary["wheel_odometry"]["slips"] = status.wheel_slips;
+    summary["wheel_odometry"]["scale"] = status.wheel_scale;
+    summary["wheel_odometry"]["scale_sigma"] = status.wheel_scale_sigma;
+  }
+  return summary;
+}
 
 std::unique_ptr<ScanSequence> open_sequence(const Options& options) {
   if (fs::is_directory(options.input)) return open_folder_sequence(options.input);
@@ -80,7 +174,9 @@ class Outputs {
     timing << ",total,rss_mb,heap_mb\n";
     degeneration_.stream() << "frame,mu,beta0_deg,direction_x,direction_y,skeleton_points,"
                               "normals,valid,map_degenerate_directions,euclidean_points,"
-                              "fragment_smoothness,structure_share,every_cluster_kept\n";
+                              "fragment_smoothness,structure_share,every_cluster_kept,"
+                              "map_weak_sigma_m,map_weak_x,map_weak_y,map_weak_z,"
+                              "map_rotation_sigma_deg\n";
     localization_.stream() << "frame,state,match_ratio,alignment,inlier_ratio,inlier_mse\n";
   }
 
@@ -147,7 +243,12 @@ class Outputs {
                            << "," << frame.mapping.degenerate_directions << ","
                            << filtered.euclidean_points << "," << filtered.fragment_smoothness
                            << "," << filtered.structure_share << ","
-                           << int(filtered.every_cluster_kept) << "\n";
+                           << int(filtered.every_cluster_kept);
+    const Observability seen = observability(frame.mapping.information);
+    degeneration_.stream() << "," << seen.weakest_sigma() << "," << seen.weakest_direction().x()
+                           << "," << seen.weakest_direction().y() << ","
+                           << seen.weakest_direction().z() << ","
+                           << seen.rotation_sigma(0) * 180.0 / M_PI << "\n";
     stamps.push_back(frame.stamp);
     for (const auto& [stage, ms] : frame.times.entries())
       stage_ms[stage].push_back(ms);
@@ -279,13 +380,15 @@ int run(const Options& options) {
   // A map folder that cannot take the map stops the run now, not after it.
   if (!options.save_map.empty()) check_map_folder(options.save_map);
   std::unique_ptr<ScanSequence> sequence = open_sequence(options);
+  MotionSensorFeed motion_sensors(options, config);
   std::unique_ptr<Pipeline> pipeline = make_pipeline(options, config);
   Outputs outputs(options.output);
   const int total = options.max_frames >= 0 && sequence->size() >= 0
                         ? std::min(options.max_frames, sequence->size())
                         : sequence->size();
-  std::fprintf(stderr, "run_sequence: %s, config %s, %s\n", sequence->describe().c_str(),
-               options.config.c_str(), describe_segmentation(config.ambient).c_str());
+  std::fprintf(stderr, "run_sequence: %s%s, config %s, %s\n", sequence->describe().c_str(),
+               motion_sensors.describe().c_str(), options.config.c_str(),
+               describe_segmentation(config.ambient).c_str());
   ProgressBar progress("run_sequence", total);
   HeapTrimmer heap_trimmer;
   Stopwatch wall(Clock::kWall);
@@ -309,6 +412,7 @@ int run(const Options& options) {
       if (!scan) break;
       stamps.add(scan->stamp);
       last_stamp = scan->stamp;
+      motion_sensors.feed_until(scan->stamp, *pipeline);
       const FrameResult& result = pipeline->process(*scan);
       heap_trimmer.after_scan();
       empty_scans += !result.valid_scan;
@@ -387,6 +491,8 @@ int run(const Options& options) {
                                {"accepted_alignments", localization.accepted}};
   }
   if (!options.save_map.empty()) summary["saved_map"] = options.save_map;
+  const nlohmann::json sensors = motion_sensors_summary(pipeline->motion_sensors().status());
+  if (!sensors.is_null()) summary["motion_sensors"] = sensors;
   summary["motion_gated_scans"] = motion_gated_scans;
   summary["odometry_rejected_motions"] = odometry_rejected_motions;
   summary["wall_time_s"] = wall_s;
@@ -469,6 +575,18 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->expected(4)
       ->needs(localize);
+  auto* imu = app.add_option("--imu", options.imu,
+                             "IMU samples (CSV: time,gyro_x,gyro_y,gyro_z,accel_x,accel_y,"
+                             "accel_z; docs/TOOLS.md): de-skewing, the guess, priors");
+  app.add_option("--imu-topic", options.imu_topic,
+                 "with a bag: its sensor_msgs/Imu topic instead of --imu")
+      ->excludes(imu);
+  auto* wheel = app.add_option("--wheel-odom", options.wheel_odom,
+                               "wheel odometry (CSV: time,linear_x,...,angular_z_variance; "
+                               "docs/TOOLS.md): the guess and a prior");
+  app.add_option("--wheel-odom-topic", options.wheel_odom_topic,
+                 "with a bag: its nav_msgs/Odometry topic instead of --wheel-odom")
+      ->excludes(wheel);
   if (const auto status = tools::parse_command_line(app, argc, argv, "run_sequence")) {
     return *status;
   }

@@ -6,7 +6,7 @@
 #include <functional>
 #include <vector>
 
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 #include "adaptive_lego_loam/core/motion_sensors/samples.h"
 
 namespace adaptive_lego_loam::test {

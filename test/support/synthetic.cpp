@@ -106,6 +106,15 @@ Scan render(const SensorParams& sensor, const Scene& scene, const Eigen::Isometr
 
 Scan render_sweep(const SensorParams& sensor, const Scene& scene, const Eigen::Isometry3d& start,
                   const Eigen::Isometry3d& sweep_motion, std::vector<Eigen::Vector3d>& world_hits) {
+  return render_sweep(
+      sensor, scene,
+      [&](double fraction) { return start * interpolate_motion(sweep_motion, fraction); },
+      world_hits);
+}
+
+Scan render_sweep(const SensorParams& sensor, const Scene& scene,
+                  const std::function<Eigen::Isometry3d(double)>& pose_at,
+                  std::vector<Eigen::Vector3d>& world_hits) {
   Scan scan;
   scan.has_ring = true;
   scan.has_time = true;
@@ -113,7 +122,7 @@ Scan render_sweep(const SensorParams& sensor, const Scene& scene, const Eigen::I
   for (int fired = 0; fired < sensor.columns; ++fired) {
     const int col = sensor.columns - 1 - fired;
     const double fraction = double(fired) / sensor.columns;
-    const Eigen::Isometry3d pose = start * interpolate_motion(sweep_motion, fraction);
+    const Eigen::Isometry3d pose = pose_at(fraction);
     for (int row = 0; row < sensor.rows; ++row) {
       const double range = cast(sensor, scene, pose, row, col);
       if (!std::isfinite(range)) continue;

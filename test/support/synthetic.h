@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -41,6 +42,11 @@ Scan render(const SensorParams& sensor, const Scene& scene, const Eigen::Isometr
 // receives each point's position in the scene's frame.
 Scan render_sweep(const SensorParams& sensor, const Scene& scene, const Eigen::Isometry3d& start,
                   const Eigen::Isometry3d& sweep_motion, std::vector<Eigen::Vector3d>& world_hits);
+
+// The same with the sensor at pose_at(fraction) (start and end: 0 and 1) in the scene's frame.
+Scan render_sweep(const SensorParams& sensor, const Scene& scene,
+                  const std::function<Eigen::Isometry3d(double)>& pose_at,
+                  std::vector<Eigen::Vector3d>& world_hits);
 
 // A point on the beam of (row, col) at `range`, with ring = row.
 ScanPoint cell_point(const SensorParams& sensor, int row, int col, double range);

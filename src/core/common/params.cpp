@@ -297,6 +297,7 @@ void read_mapping(SectionReader& in, MappingParams& m) {
                 "): the local map's keyframes are not merged");
   }
   in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
+  in.number("residual_sigma", m.residual_sigma, 1e-4, 10.0);
   in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
   in.number("vertical_prior_weight", m.vertical_prior_weight, 0.0, 1e6);
   in.number("vertical_prior_max_tilt_deg", m.vertical_prior_max_tilt_deg, 0.0, 45.0);

@@ -1,16 +1,20 @@
 #include "adaptive_lego_loam/core/mapping/scan_to_map.h"
 
 #include <ceres/autodiff_cost_function.h>
+#include <ceres/loss_function.h>
 #include <ceres/manifold.h>
 #include <ceres/problem.h>
+#include <ceres/rotation.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <vector>
 
+#include "adaptive_lego_loam/core/common/rotations.h"
 #include "adaptive_lego_loam/core/odometry/residuals.h"
 
 namespace adaptive_lego_loam {
@@ -49,6 +53,66 @@ struct VerticalWalls {
     return true;
   }
 };
+// The motion sensors' prior on the motion since the previous scan: with E = (previous * prior)^-1
+// pose, the residual root [rotation vector of E, translation of E], root^T root the prior's
+// information in the correspondences' units.
+struct MotionPriorResidual {
+  Eigen::Quaterniond rotation;  // of (previous * prior)^-1
+  Eigen::Vector3d translation;
+  Matrix6d root;
+  template <typename T>
+  bool operator()(const T* q, const T* t, T* residual) const {
+    const Eigen::Quaternion<T> pose(q[3], q[0], q[1], q[2]);
+    const Eigen::Quaternion<T> error = rotation.cast<T>() * pose;
+    const T wxyz[4] = {error.w(), error.x(), error.y(), error.z()};
+    Eigen::Matrix<T, 6, 1> xi;
+    ceres::QuaternionToAngleAxis(wxyz, xi.data());
+    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> position(t);
+    xi.template tail<3>() = rotation.cast<T>() * position + translation.cast<T>();
+    Eigen::Map<Eigen::Matrix<T, 6, 1>> out(residual);
+    out = root.cast<T>() * xi;
+    return true;
+  }
+};
+
+// Gravity's up seen from the sensor: root (R^T up - measured up).
+struct GravityResidual {
+  Eigen::Vector3d up, measured;
+  Eigen::Matrix3d root;
+  template <typename T>
+  bool operator()(const T* q, T* residual) const {
+    const Eigen::Quaternion<T> rotation(q[3], q[0], q[1], q[2]);
+    Eigen::Map<Eigen::Matrix<T, 3, 1>> out(residual);
+    out = root.cast<T>() * (rotation.conjugate() * up.cast<T>() - measured.cast<T>());
+    return true;
+  }
+};
+
+// The symmetric square root of a covariance's (pseudo-)inverse: directions it does not constrain
+// get none.
+template <int N>
+Eigen::Matrix<double, N, N> information_root(const Eigen::Matrix<double, N, N>& information) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> solver(information);
+  const Eigen::Matrix<double, N, 1> roots = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  return solver.eigenvectors() * roots.asDiagonal() * solver.eigenvectors().transpose();
+}
+
+template <int N>
+Eigen::Matrix<double, N, N> pseudo_inverse(const Eigen::Matrix<double, N, N>& covariance) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> solver(covariance);
+  const double largest = solver.eigenvalues().cwiseAbs().maxCoeff();
+  Eigen::Matrix<double, N, 1> inverse = Eigen::Matrix<double, N, 1>::Zero();
+  for (int k = 0; k < N; ++k)
+    if (solver.eigenvalues()(k) > 1e-9 * largest) inverse(k) = 1.0 / solver.eigenvalues()(k);
+  return solver.eigenvectors() * inverse.asDiagonal() * solver.eigenvectors().transpose();
+}
+
+// A prior is trusted up to about this many of its sigmas, then its pull fades (a slipping wheel,
+// an IMU after a knock).
+constexpr double kPriorRobustSigmas = 5.0;
+// Gravity's direction is never known better than this from a moving vehicle (rad).
+constexpr double kGravityFloor = 1e-3;
+
 // Each patch weighs by Tukey's biweight of its tilt from vertical at the guess, nothing at
 // max_tilt_deg: a steep slope (an embankment, a battered retaining wall) that the guess shows
 // nearly upright must not pull the map toward it, or each scan's pull tilts the next guess
@@ -201,10 +265,11 @@ Eigen::Matrix<double, 6, 6> normal_matrix(ceres::Problem& problem, double* rotat
 struct SteppedMapMatch::State {
   State(const MappingParams& params, const Cloud& corners, const Cloud& surfaces,
         const LocalMap& map, const Eigen::Isometry3d& guess,
-        const std::optional<WeakDirectionPrior>& prior)
+        const std::optional<WeakDirectionPrior>& prior, const SensorPriors& sensors)
       : params(params),
         map(map),
         prior(prior),
+        sensors(sensors),
         guess(guess),
         placed_guess(map.to_placement() * guess),
         rotation(placed_guess.linear()),
@@ -217,12 +282,18 @@ struct SteppedMapMatch::State {
   // Returns whether the match goes on.
   bool iterate();
   // LOAM's degeneracy test on the first iteration's problem: directions whose eigenvalue of J^T J
-  // is small get no update.
+  // is small get no update, unless the motion sensors' priors hold them.
   void find_degenerate_directions(ceres::Problem& problem, double* q, double* t);
+  // The motion sensors' residual blocks (made once), added to an iteration's problem, and their
+  // J^T J in the solver's tangent space.
+  void make_sensor_costs();
+  void add_sensor_priors(ceres::Problem& problem, double* q, double* t);
+  Eigen::Matrix<double, 6, 6> sensor_prior_normal_matrix() const;
 
   MappingParams params;
   const LocalMap& map;
   std::optional<WeakDirectionPrior> prior;
+  SensorPriors sensors;
   Eigen::Isometry3d guess, placed_guess;  // the latter in the frame the map's points are in
   Eigen::Quaterniond rotation;
   Eigen::Vector3d translation;
@@ -232,25 +303,92 @@ struct SteppedMapMatch::State {
   CorrespondenceCache<LineMatch> lines;
   CorrespondenceCache<PlaneMatch> planes;
   std::unique_ptr<ceres::CostFunction> walls_cost;
+  std::unique_ptr<ceres::CostFunction> motion_cost, gravity_cost;
+  std::unique_ptr<ceres::LossFunction> motion_loss;
+  Eigen::Matrix3d gravity_root = Eigen::Matrix3d::Zero();
   MapMatchResult result;
   int iteration = 0;
+  int held_directions = 0;  // of the 6, held at the guess (degenerate and not held by a prior)
   bool done = false;
 };
 
+void SteppedMapMatch::State::make_sensor_costs() {
+  const double sigma = params.residual_sigma;
+  const Eigen::Isometry3d placement = map.to_placement();
+  if (sensors.motion) {
+    const Eigen::Isometry3d inverse =
+        (placement * sensors.previous * sensors.motion->motion).inverse();
+    const Matrix6d root = sigma * information_root<6>(sensors.motion->information);
+    motion_cost.reset(new ceres::AutoDiffCostFunction<MotionPriorResidual, 6, 4, 3>(
+        new MotionPriorResidual{Eigen::Quaterniond(inverse.linear()), inverse.translation(),
+                                root}));
+    motion_loss.reset(new ceres::CauchyLoss(kPriorRobustSigmas * sigma));
+  }
+  if (sensors.gravity) {
+    const Eigen::Matrix3d covariance =
+        sensors.gravity->covariance + kGravityFloor * kGravityFloor * Eigen::Matrix3d::Identity();
+    // Only across the measured up: along it a unit vector cannot err.
+    const Eigen::Vector3d& up = sensors.gravity->up;
+    const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - up * up.transpose();
+    gravity_root = sigma * information_root<3>(across *
+                                               pseudo_inverse<3>(across * covariance * across) *
+                                               across);
+    gravity_cost.reset(new ceres::AutoDiffCostFunction<GravityResidual, 3, 4>(
+        new GravityResidual{placement.linear() * sensors.map_up, up, gravity_root}));
+  }
+}
+
+void SteppedMapMatch::State::add_sensor_priors(ceres::Problem& problem, double* q, double* t) {
+  if (motion_cost) {
+    problem.AddResidualBlock(motion_cost.get(), motion_loss.get(), q, t);
+    result.motion_prior = true;
+  }
+  if (gravity_cost) problem.AddResidualBlock(gravity_cost.get(), nullptr, q);
+}
+
+Eigen::Matrix<double, 6, 6> SteppedMapMatch::State::sensor_prior_normal_matrix() const {
+  const double sigma = params.residual_sigma;
+  // At the pose of the first iteration: body perturbations [phi, rho] from the solver's tangent
+  // [delta, dt] (Ceres' quaternion: R' = exp(2 delta) R, t' = t + dt): phi = 2 R^T delta,
+  // rho = R^T dt.
+  const Eigen::Matrix3d r = rotation.toRotationMatrix();
+  Matrix6d to_body = Matrix6d::Zero();
+  to_body.topLeftCorner<3, 3>() = 2.0 * r.transpose();
+  to_body.bottomRightCorner<3, 3>() = r.transpose();
+  Matrix6d body = Matrix6d::Zero();
+  if (sensors.motion) body += sigma * sigma * sensors.motion->information;
+  if (gravity_cost) {
+    const Eigen::Vector3d seen = r.transpose() * (map.to_placement().linear() * sensors.map_up);
+    const Eigen::Matrix3d j = gravity_root * skew(seen);
+    body.topLeftCorner<3, 3>() += j.transpose() * j;
+  }
+  return to_body.transpose() * body * to_body;
+}
+
 void SteppedMapMatch::State::find_degenerate_directions(ceres::Problem& problem, double* q,
                                                         double* t) {
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(normal_matrix(problem, q, t));
-  result.smallest_eigenvalue = solver.eigenvalues()(0);
-  Eigen::Matrix<double, 6, 6> projector = Eigen::Matrix<double, 6, 6>::Zero();
-  for (int k = 0; k < 6; ++k) {
-    const Eigen::Matrix<double, 6, 1> v = solver.eigenvectors().col(k);
-    if (solver.eigenvalues()(k) < params.degeneracy_eigenvalue) {
-      ++result.degenerate_directions;
-    } else {
-      projector += v * v.transpose();
+  const Eigen::Matrix<double, 6, 6> lidar = normal_matrix(problem, q, t);
+  const auto held = [&](const Eigen::Matrix<double, 6, 6>& normal, int& count) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(normal);
+    Eigen::Matrix<double, 6, 6> projector = Eigen::Matrix<double, 6, 6>::Zero();
+    count = 0;
+    for (int k = 0; k < 6; ++k) {
+      const Eigen::Matrix<double, 6, 1> v = solver.eigenvectors().col(k);
+      if (solver.eigenvalues()(k) < params.degeneracy_eigenvalue) {
+        ++count;
+      } else {
+        projector += v * v.transpose();
+      }
     }
-  }
+    return std::make_pair(projector, solver.eigenvalues()(0));
+  };
+  const auto [projector, smallest] = held(lidar, result.degenerate_directions);
+  result.smallest_eigenvalue = smallest;
   keep = projector;
+  held_directions = result.degenerate_directions;
+  if (!sensors.empty() && held_directions > 0) {
+    keep = held(lidar + sensor_prior_normal_matrix(), held_directions).first;
+  }
 }
 
 bool SteppedMapMatch::State::iterate() {
@@ -268,6 +406,7 @@ bool SteppedMapMatch::State::iterate() {
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   problem.AddParameterBlock(q, 4, &quaternion_manifold);
   problem.AddParameterBlock(t, 3);
@@ -279,6 +418,7 @@ bool SteppedMapMatch::State::iterate() {
     problem.AddResidualBlock(prior_cost.get(), nullptr, t);
   }
   if (iteration == 0) find_degenerate_directions(problem, q, t);
+  if (!sensors.empty()) add_sensor_priors(problem, q, t);
   const double q_before[4] = {q[0], q[1], q[2], q[3]};
   const double t_before[3] = {t[0], t[1], t[2]};
   ceres::Solver::Summary summary;
@@ -288,7 +428,7 @@ bool SteppedMapMatch::State::iterate() {
   Eigen::Matrix<double, 6, 1> step;
   quaternion_manifold.Minus(q, q_before, step.data());
   step.tail<3>() = Eigen::Vector3d(t[0] - t_before[0], t[1] - t_before[1], t[2] - t_before[2]);
-  if (result.degenerate_directions > 0) step = keep * step;
+  if (held_directions > 0) step = keep * step;
   double q_after[4];
   quaternion_manifold.Plus(q_before, step.data(), q_after);
   rotation = Eigen::Quaterniond(q_after[3], q_after[0], q_after[1], q_after[2]).normalized();
@@ -305,13 +445,20 @@ SteppedMapMatch::SteppedMapMatch(const MappingParams& params, const Cloud& corne
                                  const Cloud& surfaces, const LocalMap& map,
                                  const Eigen::Isometry3d& guess,
                                  const std::optional<WeakDirectionPrior>& prior,
-                                 const std::vector<Eigen::Vector3d>& wall_normals)
-    : state_(std::make_unique<State>(params, corners, surfaces, map, guess, prior)) {
+                                 const std::vector<Eigen::Vector3d>& wall_normals,
+                                 const SensorPriors& sensors)
+    : state_(std::make_unique<State>(params, corners, surfaces, map, guess, prior, sensors)) {
   State& state = *state_;
   state.done = map.empty() || params.max_iterations <= 0;
   // The vertical-structure prior, in the frame the map's points are in (the map frame's up moves
-  // with it while placing again).
-  if (!state.done && params.vertical_prior_weight > 0.0 && !wall_normals.empty()) {
+  // with it while placing again). Gravity, where an IMU gives it, holds the attitude instead.
+  if (!state.done && !sensors.empty()) {
+    if (std::getenv("ALEGO_NO_MOTION_PRIOR")) state.sensors.motion.reset();
+    if (std::getenv("ALEGO_NO_GRAVITY_PRIOR")) state.sensors.gravity.reset();
+    state.make_sensor_costs();
+  }
+  if (!state.done && params.vertical_prior_weight > 0.0 && !wall_normals.empty() &&
+      !sensors.gravity) {
     state.walls_cost =
         vertical_walls_cost(wall_normals, state.placed_guess.linear(),
                             map.to_placement().linear() * Eigen::Vector3d::UnitZ(),
@@ -338,6 +485,9 @@ MapMatchResult SteppedMapMatch::result() const {
     placed_pose.linear() = state.rotation.toRotationMatrix();
     placed_pose.translation() = state.translation;
     result.pose = state.map.to_placement().inverse() * placed_pose;
+    result.information = correspondence_information(state.matches, placed_pose,
+                                                     state.params.huber_loss,
+                                                     state.params.residual_sigma);
   }
   return result;
 }
@@ -347,8 +497,9 @@ ScanToMapMatcher::ScanToMapMatcher(const MappingParams& params) : params_(params
 MapMatchResult ScanToMapMatcher::match(const Cloud& corners, const Cloud& surfaces,
                                        const LocalMap& map, const Eigen::Isometry3d& guess,
                                        const std::optional<WeakDirectionPrior>& prior,
-                                       const std::vector<Eigen::Vector3d>& wall_normals) const {
-  SteppedMapMatch match(params_, corners, surfaces, map, guess, prior, wall_normals);
+                                       const std::vector<Eigen::Vector3d>& wall_normals,
+                                       const SensorPriors& sensors) const {
+  SteppedMapMatch match(params_, corners, surfaces, map, guess, prior, wall_normals, sensors);
   while (!match.done())
     match.iterate();
   return match.result();

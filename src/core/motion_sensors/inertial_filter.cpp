@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 
 namespace adaptive_lego_loam {
 namespace {

@@ -46,7 +46,6 @@ std::optional<SampleFault> InputMonitor::check(double stamp, bool finite, bool p
     if (interval > max_gap_s_) {
       ++status_.gaps;
       status_.latest_gap_s = interval;
-      last_gap_end_ = stamp;
     } else {
       // The rate over about the newest 20 samples; a gap does not count as a slow sample.
       constexpr double kWeight = 0.05;
@@ -58,10 +57,6 @@ std::optional<SampleFault> InputMonitor::check(double stamp, bool finite, bool p
   status_.last_stamp = stamp;
   ++status_.accepted;
   return std::nullopt;
-}
-
-bool InputMonitor::covers(double from, double to) const {
-  return status_.last_stamp >= to - max_gap_s_ && !(last_gap_end_ > from);
 }
 
 }  // namespace adaptive_lego_loam

@@ -3,8 +3,10 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 
 namespace adaptive_lego_loam {
 namespace {
@@ -36,6 +38,41 @@ Eigen::Matrix<double, 6, 6> right_perturbation_jacobian(const Eigen::Isometry3d&
   Eigen::Matrix<double, 6, 6> jacobian = Eigen::Matrix<double, 6, 6>::Identity();
   jacobian.bottomRightCorner<3, 3>() = motion.linear().transpose();
   return jacobian;
+}
+
+Matrix6d symmetric_inverse(const Matrix6d& m);
+
+// The motion the LiDAR alone measured, from the mapped motion that weighed a prior in: with the
+// prior's information P and the LiDAR's L, the mapped xi_f (about the prior's motion) is
+// (P + L)^-1 L xi_l, so xi_l = L^+ (P + L) xi_f where the LiDAR measured anything.
+Eigen::Isometry3d lidar_only_motion(const Eigen::Isometry3d& mapped, const MotionPrior& prior,
+                                    const Matrix6d& lidar_information) {
+  const Eigen::Isometry3d offset = prior.motion.inverse() * mapped;
+  Eigen::Matrix<double, 6, 1> fused;
+  fused.head<3>() = rotation_log(offset.linear());
+  fused.tail<3>() = offset.translation();
+  const Eigen::Matrix<double, 6, 1> alone =
+      symmetric_inverse(lidar_information) * (prior.information + lidar_information) * fused;
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  step.linear() = rotation_exp(alone.head<3>());
+  step.translation() = alone.tail<3>();
+  return prior.motion * step;
+}
+
+// The LiDAR's information where it outweighs the prior tenfold: there the mapped motion is the
+// LiDAR's to within a tenth; elsewhere it is the prior's own, and must not be fed back.
+Matrix6d lidar_dominant_information(const Matrix6d& lidar, const Matrix6d& prior) {
+  Eigen::SelfAdjointEigenSolver<Matrix6d> prior_solver(prior + 1e-9 * Matrix6d::Identity());
+  const Matrix6d root = prior_solver.operatorSqrt();
+  const Matrix6d root_inverse = prior_solver.operatorInverseSqrt();
+  Eigen::SelfAdjointEigenSolver<Matrix6d> solver(root_inverse * lidar * root_inverse);
+  Matrix6d kept = Matrix6d::Zero();
+  for (int k = 0; k < 6; ++k) {
+    if (solver.eigenvalues()(k) < 10.0) continue;
+    const Eigen::Matrix<double, 6, 1> v = solver.eigenvectors().col(k);
+    kept += solver.eigenvalues()(k) * v * v.transpose();
+  }
+  return root * kept * root;
 }
 
 Matrix6d symmetric_inverse(const Matrix6d& m) {
@@ -98,7 +135,7 @@ const MotionPrediction& MotionSensors::predict(double stamp, double sweep_period
   stamp_ = stamp;
   if (!active()) return prediction_;
   if (previous_stamp_ && filter_.initialized()) {
-    if (imu_monitor_.covers(*previous_stamp_, stamp)) {
+    if (samples_cover(imu_samples_, *previous_stamp_, stamp, imu_params_.max_gap_s)) {
       predict_with_filter(stamp, sweep_period);
     } else {
       filter_.reset();
@@ -239,23 +276,34 @@ void MotionSensors::predict_with_wheel(double stamp) {
   status_.wheel_in_use = true;
 }
 
-void MotionSensors::update(const std::optional<Eigen::Isometry3d>& lidar_motion,
-                           const Matrix6d& information) {
+void MotionSensors::update(const std::optional<Eigen::Isometry3d>& mapped_motion,
+                           const Matrix6d& information, bool prior_used) {
   if (!active()) return;
+  std::optional<Eigen::Isometry3d> lidar_motion = mapped_motion;
+  Matrix6d lidar_information = information;
+  const char* mode = std::getenv("ALEGO_FEEDBACK");
+  if (mapped_motion && prior_used && prediction_.motion && mode) {
+    if (std::string(mode) == "defuse") {
+      lidar_motion = lidar_only_motion(*mapped_motion, *prediction_.motion, information);
+    } else if (std::string(mode) == "dominant") {
+      lidar_information = lidar_dominant_information(information, prediction_.motion->information);
+    }
+  }
   if (status_.imu_in_use) {
     if (lidar_motion) {
       const Eigen::Isometry3d imu_motion =
           lidar_from_imu_.inverse() * *lidar_motion * lidar_from_imu_;
       const Matrix6d to_lidar = adjoint(lidar_from_imu_);
       const Eigen::Matrix<double, 6, 6> to_right = right_perturbation_jacobian(imu_motion);
-      const Matrix6d imu_information = to_lidar.transpose() * information * to_lidar;
+      const Matrix6d imu_information = to_lidar.transpose() * lidar_information * to_lidar;
       if (!filter_.update_motion(imu_motion, to_right.transpose() * imu_information * to_right)) {
         ++status_.lidar_rejections;
       }
     }
     filter_.mark_scan();
-  } else if (!filter_.initialized() && lidar_motion &&
-             imu_monitor_.covers(stamp_ - kLevellingWindow, stamp_)) {
+  } else if (!filter_.initialized() && lidar_motion && interval_start_ &&
+             samples_cover(imu_samples_, std::max(stamp_ - kLevellingWindow, *interval_start_),
+                           stamp_, imu_params_.max_gap_s)) {
     // With the LiDAR's velocity known: it levels the filter in a turn and starts its velocity.
     start_filter(*lidar_motion);
   }
@@ -277,9 +325,10 @@ void MotionSensors::update(const std::optional<Eigen::Isometry3d>& lidar_motion,
 void MotionSensors::start_filter(const Eigen::Isometry3d& lidar_motion) {
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), rate = Eigen::Vector3d::Zero();
   int count = 0;
+  const double levelling_start = std::max(stamp_ - kLevellingWindow, *interval_start_);
   for (const ImuSample& sample : imu_samples_) {
     if (sample.stamp > stamp_) break;
-    if (sample.stamp < stamp_ - kLevellingWindow) continue;
+    if (sample.stamp < levelling_start) continue;
     force += sample.linear_acceleration;
     rate += sample.angular_velocity;
     ++count;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 
 namespace adaptive_lego_loam {
 namespace {

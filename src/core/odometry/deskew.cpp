@@ -114,4 +114,31 @@ void deskew_to_sweep_end(const Eigen::Isometry3d& sweep_motion, const std::vecto
   }
 }
 
+void deskew_to_sweep_end(const SweepMotion& sweep, const std::vector<float>& fractions,
+                         std::vector<ScanPoint>& points) {
+  // Each point moved by its place between two of the sweep's poses, blended linearly: the poses
+  // are a few milliseconds apart, where the blend's error is far below the range noise.
+  const int intervals = static_cast<int>(sweep.end_from_fraction.size()) - 1;
+  if (intervals < 1) return;
+  std::vector<Eigen::Matrix3f> rotations;
+  std::vector<Eigen::Vector3f> translations;
+  for (const Eigen::Isometry3d& pose : sweep.end_from_fraction) {
+    rotations.push_back(pose.linear().cast<float>());
+    translations.push_back(pose.translation().cast<float>());
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ScanPoint& p = points[i];
+    const float position = fractions[i] * intervals;
+    const int first = std::min(static_cast<int>(position), intervals - 1);
+    const float w = position - first;
+    const Eigen::Vector3f point(p.x, p.y, p.z);
+    const Eigen::Vector3f a = rotations[first] * point + translations[first];
+    const Eigen::Vector3f b = rotations[first + 1] * point + translations[first + 1];
+    const Eigen::Vector3f moved = (1.f - w) * a + w * b;
+    p.x = moved.x();
+    p.y = moved.y();
+    p.z = moved.z();
+  }
+}
+
 }  // namespace adaptive_lego_loam

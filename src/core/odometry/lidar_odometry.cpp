@@ -14,20 +14,27 @@ LidarOdometry::LidarOdometry(const SensorParams& sensor, const FeatureParams& fe
       extractor_(features),
       registration_(odometry, sensor.beam_angles_deg) {}
 
-void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out) {
+void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out,
+                            const MotionPrediction* sensors) {
   Stopwatch watch;
   out.times.clear();
   points_ = cloud.points;
   outliers_ = cloud.outliers;
   out.deskewed_by_time_field = false;
-  if (!sensor_.deskewed && !first_) {
-    // Constant velocity: the sweep moved as much as the last scan-to-scan motion. CloudInfo's
-    // orientation is LeGO-LOAM's clockwise angle, the negated azimuth.
+  const bool measured_sweep = sensors && sensors->sweep;
+  if (!sensor_.deskewed && (!first_ || measured_sweep)) {
+    // As the motion sensors measured the sweep, else at constant velocity: the sweep moved as
+    // much as the last scan-to-scan motion. CloudInfo's orientation is LeGO-LOAM's clockwise
+    // angle, the negated azimuth.
     const double start_azimuth = -cloud.info.start_orientation;
     for (std::vector<ScanPoint>* points : {&points_, &outliers_}) {
       out.deskewed_by_time_field =
           sweep_fractions(*points, has_time, start_azimuth, sensor_.scan_period, fractions_);
-      deskew_to_sweep_end(last_motion_, fractions_, *points);
+      if (measured_sweep) {
+        deskew_to_sweep_end(*sensors->sweep, fractions_, *points);
+      } else {
+        deskew_to_sweep_end(last_motion_, fractions_, *points);
+      }
     }
   }
   out.times.add("deskew", watch.lap_ms());
@@ -35,7 +42,9 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
   out.times.add("features", watch.lap_ms());
 
   const Eigen::Isometry3d prediction =
-      params_.constant_velocity ? last_motion_ : Eigen::Isometry3d::Identity();
+      sensors && sensors->motion ? sensors->motion->motion
+      : params_.constant_velocity ? last_motion_
+                                  : Eigen::Isometry3d::Identity();
   // The first pair: no motion is known yet, and the sensor may already be moving fast.
   const bool start_search = params_.start_search_max_speed > 0.0;
   if (scans_ == 1 && start_search) {

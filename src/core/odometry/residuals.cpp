@@ -3,17 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "adaptive_lego_loam/core/common/rotations.h"
+
 namespace adaptive_lego_loam {
 namespace {
 
 template <int Rows, int Columns>
 using RowMajor = Eigen::Matrix<double, Rows, Columns, Eigen::RowMajor>;
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 // m = R p + t over the Euler 6-vector, with dm/d(pose).
 class EulerPose {
@@ -83,6 +79,27 @@ class QuaternionPose {
   double w_;
   Eigen::Vector3d translation_;
   Eigen::Matrix3d rotation_;
+};
+
+// m = pose * exp(xi) p at xi = 0, with dm/d(xi), xi = [rotation vector, translation] in the
+// point's frame.
+class BodyPerturbation {
+ public:
+  static constexpr int kParameters = 6;
+
+  explicit BodyPerturbation(const Eigen::Isometry3d& pose) : pose_(pose) {}
+
+  Eigen::Vector3d apply(const Eigen::Vector3d& p) const { return pose_ * p; }
+
+  RowMajor<3, 6> jacobian(const Eigen::Vector3d& p) const {
+    RowMajor<3, 6> j;
+    j.leftCols<3>() = -pose_.linear() * skew(p);
+    j.rightCols<3>() = pose_.linear();
+    return j;
+  }
+
+ private:
+  Eigen::Isometry3d pose_;
 };
 
 // Folds a correspondence's Huber loss into its residual r and Jacobian j: beyond delta, r is
@@ -187,6 +204,21 @@ bool QuaternionRegistrationCost::Evaluate(double const* const* parameters, doubl
   evaluate_matches(QuaternionPose(parameters[0], parameters[1]), matches_, MatchKinds::kBoth,
                    huber_loss_, rotation || translation, residuals, write_row);
   return true;
+}
+
+Eigen::Matrix<double, 6, 6> correspondence_information(const Correspondences& matches,
+                                                       const Eigen::Isometry3d& pose,
+                                                       double huber_loss, double sigma) {
+  std::vector<double> residuals(residual_count(matches, MatchKinds::kBoth));
+  Eigen::Matrix<double, 6, 6> sum = Eigen::Matrix<double, 6, 6>::Zero();
+  const auto add_row = [&sum](int, const double* values) {
+    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> row(values);
+    sum.selfadjointView<Eigen::Lower>().rankUpdate(row);
+  };
+  evaluate_matches(BodyPerturbation(pose), matches, MatchKinds::kBoth, huber_loss, true,
+                   residuals.data(), add_row);
+  const Eigen::Matrix<double, 6, 6> full = sum.selfadjointView<Eigen::Lower>();
+  return full / (sigma * sigma);
 }
 
 ceres::Solver::Options registration_solver_options(int max_iterations) {

@@ -253,9 +253,21 @@ void LidarMapping::add_keyframe(const FeatureSet& features, double stamp, bool d
     places_.forget(first, last);
 }
 
+SensorPriors LidarMapping::sensor_priors(const MotionPrediction* sensors) const {
+  SensorPriors priors;
+  if (!sensors || scans_ == 0) return priors;
+  priors.previous = pose_;
+  priors.motion = sensors->motion;
+  if (const std::optional<Eigen::Vector3d> up = map_gravity_.up(); up && sensors->gravity) {
+    priors.gravity = sensors->gravity;
+    priors.map_up = *up;
+  }
+  return priors;
+}
+
 void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose,
                            double stamp, const std::optional<WeakDirectionPrior>& prior,
-                           MappingOutput& out) {
+                           MappingOutput& out, const MotionPrediction* sensors) {
   Stopwatch watch;
   out.times.clear();
   const Eigen::Isometry3d motion = last_odometry_pose_
@@ -286,10 +298,12 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
       wall_normals_ =
           wall_normals(*features.less_flat, pose.linear(), params_.vertical_prior_max_tilt_deg);
     }
+    const SensorPriors priors = sensor_priors(sensors);
     if (localization_) {
-      may_be_keyframe = localize(features, *corners, *surfaces, stamp, prior, pose, out);
+      may_be_keyframe = localize(features, *corners, *surfaces, stamp, prior, priors, pose, out);
     } else {
-      out.match = matcher_.match(*corners, *surfaces, local_map_, pose, prior, wall_normals_);
+      out.match =
+          matcher_.match(*corners, *surfaces, local_map_, pose, prior, wall_normals_, priors);
       pose = out.match.pose;
     }
     out.times.add("mapping", watch.lap_ms());
@@ -297,6 +311,7 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   const bool aligned =
       out.localization && out.localization->alignment && out.localization->alignment->accepted();
   pose_ = pose;
+  if (sensors && sensors->gravity) map_gravity_.add(pose_.linear(), *sensors->gravity);
   // The velocity exists once two scans have been mapped (an alignment's jump is not motion).
   if (scans_ >= 1) last_mapped_motion_ = aligned ? motion : previous_pose.inverse() * pose_;
   fusion_.update_mapping(odometry_pose, pose_);
@@ -332,20 +347,24 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
 
 bool LidarMapping::localize(const FeatureSet& features, const Cloud& corners, const Cloud& surfaces,
                             double stamp, const std::optional<WeakDirectionPrior>& prior,
-                            Eigen::Isometry3d& pose, MappingOutput& out) {
+                            const SensorPriors& sensor_priors, Eigen::Isometry3d& pose,
+                            MappingOutput& out) {
   LocalizationTracker& tracker = *localization_;
   // A first sweep that could not be de-skewed is no fit for the map: the next one is aligned.
   const bool deskewed = !(scans_ == 0 && first_sweep_distorted_);
+  bool aligned_now = false;
   if (deskewed && tracker.alignment_due(stamp)) {
     const LoopDetection alignment =
         tracker.align(keyframes_, make_keyframe(features, stamp, pose, false), stamp);
+    aligned_now = alignment.accepted();
     if (alignment.accepted()) {
       pose = alignment.correction * pose;
       local_map_.update(keyframes_, pose.translation());
     }
   }
   if (tracker.state() == LocalizationState::kTracking) {
-    out.match = matcher_.match(corners, surfaces, local_map_, pose, prior, wall_normals_);
+    out.match = matcher_.match(corners, surfaces, local_map_, pose, prior, wall_normals_,
+                               aligned_now ? SensorPriors() : sensor_priors);
     pose = out.match.pose;
     tracker.assess(out.match, corners.size() + surfaces.size());
     // The last scans before the track was lost may have put wrong keyframes in the map.

@@ -19,12 +19,14 @@ std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& para
 Pipeline::Pipeline(const Config& config)
     : config_(config),
       filter_(config),
+      motion_(config),
       odometry_(config.sensor, config.features, config.odometry),
       mapping_(config) {}
 
 Pipeline::Pipeline(const Config& config, std::vector<Keyframe> map, const Eigen::Isometry3d& start)
     : config_(config),
       filter_(config),
+      motion_(config),
       odometry_(config.sensor, config.features, config.odometry),
       mapping_(config, std::move(map), start) {}
 
@@ -36,7 +38,18 @@ const FrameResult& Pipeline::process(const Scan& scan) {
   result_.times.append(filtered_.times());
   result_.valid_scan = filtered_.segmentation.image.stats().projected > 0;
 
-  odometry_.process(filtered_.segmentation.cloud, scan.has_time, odometry_out_);
+  // The motion sensors, when there are any: LiDAR-only otherwise, as if they did not exist.
+  const MotionPrediction* sensors = nullptr;
+  if (motion_.active()) {
+    Stopwatch watch;
+    const MotionPrediction& prediction = motion_.predict(scan.stamp, config_.sensor.scan_period);
+    if (!prediction.empty()) sensors = &prediction;
+    result_.times.add("motion_sensors", watch.lap_ms());
+    result_.imu_used = motion_.status().imu_in_use;
+    result_.wheel_used = motion_.status().wheel_in_use;
+  }
+
+  odometry_.process(filtered_.segmentation.cloud, scan.has_time, odometry_out_, sensors);
   result_.times.append(odometry_out_.times);
   result_.odometry = odometry_out_.odometry;
   result_.odometry_pose = odometry_out_.pose;
@@ -48,7 +61,15 @@ const FrameResult& Pipeline::process(const Scan& scan) {
   result_.less_flat = static_cast<int>(features.less_flat->size());
 
   mapping_.process(features, odometry_out_.pose, scan.stamp,
-                   weak_direction_prior(config_.mapping, filtered_), mapping_out_);
+                   weak_direction_prior(config_.mapping, filtered_), mapping_out_, sensors);
+  if (motion_.active()) {
+    Stopwatch watch;
+    // What the LiDAR saw of this scan's motion teaches the sensors (biases, scale, velocity).
+    const bool mapped = mapping_out_.match.matched && mapping_out_.motion;
+    motion_.update(mapped ? mapping_out_.motion : std::nullopt, mapping_out_.match.information,
+                   mapping_out_.match.motion_prior);
+    result_.times.add("motion_sensors", watch.lap_ms());
+  }
   if (uses_mapped_motion(config_.odometry, config_.mapping) && mapping_out_.motion) {
     odometry_.use_mapped_motion(*mapping_out_.motion);
   }

@@ -171,3 +171,45 @@ TEST(Deskew, TheSweepsFirstPointStartsItWhateverItsAzimuth) {
     EXPECT_NEAR(fractions[2], 1.0 - 0.5 / 360.0, 1e-5) << azimuth_deg;
   }
 }
+
+// Turning into a bend (the yaw rate rising from 0 to 40 deg/s over the sweep) with the body
+// rolling 2 deg and back: no constant velocity describes it; the motion sensors' sweep does.
+TEST(Deskew, AMeasuredSweepStraightensWhatAConstantVelocityCannot) {
+  const auto pose_at = [](double s) {
+    const double t = 0.1 * s;
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    const double yaw = 0.5 * (40.0 * M_PI / 180.0 / 0.1) * t * t;  // yaw rate 0 -> 40 deg/s
+    const double roll = 2.0 * M_PI / 180.0 * std::sin(M_PI * s);
+    pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                     Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                        .toRotationMatrix();
+    pose.translation() = Eigen::Vector3d(12.0 * t, 0.0, 0.0);
+    return pose;
+  };
+  const SensorParams sensor = test::even_sensor(16, 900, -15.0, 15.0);
+  std::vector<Eigen::Vector3d> world_hits;
+  const Scan scan = test::render_sweep(sensor, room(), pose_at, world_hits);
+  const Eigen::Isometry3d end_from_world = pose_at(1.0).inverse();
+  const auto worst_error = [&](const std::vector<ScanPoint>& points) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector3d p(points[i].x, points[i].y, points[i].z);
+      worst = std::max(worst, (p - end_from_world * world_hits[i]).norm());
+    }
+    return worst;
+  };
+  std::vector<float> fractions;
+  ASSERT_TRUE(sweep_fractions(scan.points, true, start_azimuth(scan), sensor.scan_period,
+                              fractions));
+  // The sweep's poses at 21 fractions, as the IMU's filter gives them.
+  SweepMotion sweep;
+  for (int i = 0; i <= 20; ++i)
+    sweep.end_from_fraction.push_back(end_from_world * pose_at(i / 20.0));
+  std::vector<ScanPoint> measured = scan.points;
+  deskew_to_sweep_end(sweep, fractions, measured);
+  EXPECT_LT(worst_error(measured), 0.005);  // well within a VLP-16's 2-3 cm of range noise
+  // Constant velocity at the sweep's own whole motion still bends the walls by centimetres.
+  std::vector<ScanPoint> constant = scan.points;
+  deskew_to_sweep_end(pose_at(0.0).inverse() * pose_at(1.0), fractions, constant);
+  EXPECT_GT(worst_error(constant), 0.05);
+}

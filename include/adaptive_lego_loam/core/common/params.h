@@ -182,6 +182,9 @@ struct MappingParams {
   // sparse, and other keyframes see them closer); 0 keeps all.
   double keyframe_merge_radius = 20.0;
   double degeneracy_eigenvalue = 100;  // LOAM's threshold on the normal equations' eigenvalues
+  // The 1-sigma error of a scan-to-map residual (m): the information the match publishes, and
+  // how the motion sensors' priors weigh against the LiDAR's correspondences.
+  double residual_sigma = 0.05;
   // Weight of a prior pulling the translation along the ambient filter's weak direction toward
   // the odometry's prediction, times mu; 0 turns it off.
   double weak_direction_prior = 0.0;

@@ -11,6 +11,7 @@
 #include "adaptive_lego_loam/core/common/cloud.h"
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/core/mapping/local_map.h"
+#include "adaptive_lego_loam/core/motion_sensors/motion_prediction.h"
 
 namespace adaptive_lego_loam {
 
@@ -22,6 +23,22 @@ struct MapMatchResult {
   int degenerate_directions = 0;     // of the 6, held at the guess
   double smallest_eigenvalue = 0.0;  // of the normal equations at the first iteration
   bool matched = false;              // false with too few correspondences: pose = guess
+  // What the LiDAR's correspondences alone say of the pose: their information about a right
+  // perturbation of it ([rotation vector, translation], sensor frame), by the last iteration's
+  // correspondences at the result, with MappingParams::residual_sigma. Zero when not matched.
+  Matrix6d information = Matrix6d::Zero();
+  bool motion_prior = false;  // the motion sensors' motion prior took part
+};
+
+// The motion sensors' priors on a scan's pose (core/motion_sensors/): its motion since the
+// previous scan's mapped pose `previous` (map frame), and gravity's up in the sensor frame against
+// the map frame's up `map_up`.
+struct SensorPriors {
+  Eigen::Isometry3d previous = Eigen::Isometry3d::Identity();
+  std::optional<MotionPrior> motion;
+  std::optional<GravityPrior> gravity;
+  Eigen::Vector3d map_up = Eigen::Vector3d::UnitZ();
+  bool empty() const { return !motion && !gravity; }
 };
 
 // A soft constraint along the direction the scan constrains least (the ambient filter's weak
@@ -39,7 +56,8 @@ class SteppedMapMatch {
   SteppedMapMatch(const MappingParams& params, const Cloud& corners, const Cloud& surfaces,
                   const LocalMap& map, const Eigen::Isometry3d& guess,
                   const std::optional<WeakDirectionPrior>& prior = std::nullopt,
-                  const std::vector<Eigen::Vector3d>& wall_normals = {});
+                  const std::vector<Eigen::Vector3d>& wall_normals = {},
+                  const SensorPriors& sensors = SensorPriors());
   ~SteppedMapMatch();
   SteppedMapMatch(const SteppedMapMatch&) = delete;
   SteppedMapMatch& operator=(const SteppedMapMatch&) = delete;
@@ -61,11 +79,13 @@ class ScanToMapMatcher {
   explicit ScanToMapMatcher(const MappingParams& params);
   // `corners` and `surfaces` in the sensor frame; `guess` the sensor pose in the map.
   // `wall_normals` (sensor frame, from wall_normals()) feed the vertical-structure prior when
-  // params.vertical_prior_weight > 0.
+  // params.vertical_prior_weight > 0. `sensors`: the motion sensors' priors, weighed against the
+  // correspondences by params.residual_sigma.
   MapMatchResult match(const Cloud& corners, const Cloud& surfaces, const LocalMap& map,
                        const Eigen::Isometry3d& guess,
                        const std::optional<WeakDirectionPrior>& prior = std::nullopt,
-                       const std::vector<Eigen::Vector3d>& wall_normals = {}) const;
+                       const std::vector<Eigen::Vector3d>& wall_normals = {},
+                       const SensorPriors& sensors = SensorPriors()) const;
 
  private:
   MappingParams params_;

@@ -2,6 +2,7 @@
 // The health of one optional input's sample stream: which samples are faults (dropped and counted,
 // never used), the rate, and the gaps. A fault is reported once per kind to whoever logs it.
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <optional>
@@ -31,15 +32,25 @@ class InputMonitor {
   // (`plausible`): nothing when it is accepted, else the fault it was dropped for.
   std::optional<SampleFault> check(double stamp, bool finite, bool plausible);
   const InputStatus& status() const { return status_; }
-  // Whether the samples cover (from, to]: no gap ended after `from`, and the newest sample is at
-  // most a max gap before `to`.
-  bool covers(double from, double to) const;
 
  private:
   double max_gap_s_;
   InputStatus status_;
   double mean_interval_ = 0.0;
-  double last_gap_end_ = -std::numeric_limits<double>::infinity();
 };
+
+// Whether samples (ordered by stamp) cover [from, to] without a gap: the last one at or before
+// `from`, those between and `to` each within `max_gap` of the next. Only samples up to `to` count,
+// so the answer does not depend on when later ones arrive.
+template <class Samples>
+bool samples_cover(const Samples& samples, double from, double to, double max_gap) {
+  double last = -std::numeric_limits<double>::infinity();
+  for (const auto& sample : samples) {
+    if (sample.stamp > to) break;
+    if (sample.stamp > from && sample.stamp - std::max(last, from) > max_gap) return false;
+    last = sample.stamp;
+  }
+  return last > -std::numeric_limits<double>::infinity() && to - std::max(last, from) <= max_gap;
+}
 
 }  // namespace adaptive_lego_loam

@@ -48,10 +48,13 @@ class MotionSensors {
   // Before the scan whose sweep ends at `stamp` (a sweep of `sweep_period` s): the samples up to
   // `stamp` integrated. Empty when no input covers the scan.
   const MotionPrediction& predict(double stamp, double sweep_period);
-  // After mapping the same scan: its motion since the previous scan (the LiDAR frame) and the
-  // information of that motion (right perturbations, MotionPrior's), or nothing when the scan
-  // was not mapped.
-  void update(const std::optional<Eigen::Isometry3d>& lidar_motion, const Matrix6d& information);
+  // After mapping the same scan: its mapped motion since the previous scan (the LiDAR frame), the
+  // information the LiDAR's correspondences alone have of it (right perturbations, MotionPrior's)
+  // and whether the mapping weighed this scan's motion prior in (then what the LiDAR alone saw is
+  // taken out of the result, so that the prior is not counted twice); nothing when the scan was
+  // not mapped.
+  void update(const std::optional<Eigen::Isometry3d>& mapped_motion, const Matrix6d& information,
+              bool prior_used);
 
   const MotionSensorsStatus& status() const { return status_; }
   const InertialFilter& filter() const { return filter_; }

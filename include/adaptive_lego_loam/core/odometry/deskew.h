@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/scan.h"
+#include "adaptive_lego_loam/core/motion_sensors/motion_prediction.h"
 
 namespace adaptive_lego_loam {
 
@@ -19,6 +20,11 @@ bool sweep_fractions(const std::vector<ScanPoint>& points, bool has_time, double
 // Moves points measured along a sweep during which the sensor moved by `sweep_motion` (pose at
 // the sweep's end in the frame of its start) into the frame of the sweep's end.
 void deskew_to_sweep_end(const Eigen::Isometry3d& sweep_motion, const std::vector<float>& fractions,
+                         std::vector<ScanPoint>& points);
+
+// The same along a sweep whose poses the motion sensors measured (SweepMotion: an IMU's rotation and
+// the filter's velocity, not a constant velocity).
+void deskew_to_sweep_end(const SweepMotion& sweep, const std::vector<float>& fractions,
                          std::vector<ScanPoint>& points);
 
 // The pose a fraction `s` of the way along `motion` (rotation by slerp, translation linear).

@@ -10,6 +10,7 @@
 #include "adaptive_lego_loam/core/clustering/segmenter.h"
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/core/common/timing.h"
+#include "adaptive_lego_loam/core/motion_sensors/motion_prediction.h"
 #include "adaptive_lego_loam/core/odometry/feature_extraction.h"
 #include "adaptive_lego_loam/core/odometry/scan_to_scan.h"
 
@@ -27,8 +28,10 @@ class LidarOdometry {
  public:
   LidarOdometry(const SensorParams& sensor, const FeatureParams& features,
                 const OdometryParams& odometry);
-  // `has_time`: whether the cloud's points carry their time in the sweep.
-  void process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out);
+  // `has_time`: whether the cloud's points carry their time in the sweep. `sensors`: the motion
+  // sensors' prediction of this scan, if any: its sweep de-skews, its motion is the guess.
+  void process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out,
+               const MotionPrediction* sensors = nullptr);
   // The last scan's motion as mapping refined it (MappingOutput::motion) replaces the odometry's
   // own estimate as the constant-velocity model that de-skews and predicts the next scan:
   // mapping's is far better on 16-beam sensors. Call it only when uses_mapped_motion().

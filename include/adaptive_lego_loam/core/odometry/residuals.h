@@ -73,6 +73,14 @@ class QuaternionRegistrationCost : public ceres::CostFunction {
   double huber_loss_;
 };
 
+// The information of the correspondences about a right perturbation of `pose` (the scan's pose in
+// the target frame; pose * exp(xi), xi = [rotation vector, translation], the scan's own frame):
+// the sum of J^T J over the residuals as the solve weighs them (each correspondence's Huber loss
+// and scale), divided by sigma^2, sigma the residuals' 1-sigma error (m).
+Eigen::Matrix<double, 6, 6> correspondence_information(const Correspondences& matches,
+                                                       const Eigen::Isometry3d& pose,
+                                                       double huber_loss, double sigma);
+
 // Options of the core's small registration problems (6 or 7 parameters, one cost function):
 // dense normal equations, one thread (deterministic), silent.
 ceres::Solver::Options registration_solver_options(int max_iterations);

@@ -14,6 +14,7 @@
 #include "adaptive_lego_loam/core/mapping/keyframe.h"
 #include "adaptive_lego_loam/core/mapping/keyframe_merging.h"
 #include "adaptive_lego_loam/core/mapping/local_map.h"
+#include "adaptive_lego_loam/core/mapping/map_gravity.h"
 #include "adaptive_lego_loam/core/mapping/scan_to_map.h"
 #include "adaptive_lego_loam/core/mapping/transform_fusion.h"
 #include "adaptive_lego_loam/core/odometry/feature_extraction.h"
@@ -60,9 +61,11 @@ class LidarMapping {
   // `start`, the first scan's pose in the map frame. No loop closure, no merging.
   LidarMapping(const Config& config, std::vector<Keyframe> map, const Eigen::Isometry3d& start);
   // `odometry_pose`: the scan's pose in the odometry frame; the map pose is predicted from the
-  // odometry's motion since the previous scan, then refined against the local map.
+  // odometry's motion since the previous scan, then refined against the local map. `sensors`:
+  // the motion sensors' prediction of this scan (its motion and gravity priors), if any.
   void process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose, double stamp,
-               const std::optional<WeakDirectionPrior>& prior, MappingOutput& out);
+               const std::optional<WeakDirectionPrior>& prior, MappingOutput& out,
+               const MotionPrediction* sensors = nullptr);
 
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
   bool localizing() const { return localization_.has_value(); }
@@ -99,7 +102,9 @@ class LidarMapping {
   // returns whether it may become a keyframe (it is tracked).
   bool localize(const FeatureSet& features, const Cloud& corners, const Cloud& surfaces,
                 double stamp, const std::optional<WeakDirectionPrior>& prior,
-                Eigen::Isometry3d& pose, MappingOutput& out);
+                const SensorPriors& sensor_priors, Eigen::Isometry3d& pose, MappingOutput& out);
+  // The motion sensors' priors of this scan, mapped from the previous scan's pose.
+  SensorPriors sensor_priors(const MotionPrediction* sensors) const;
   // This drive's keyframes but the newest `keep` give their clouds back (localization mode).
   void retire_recent_keyframes(int keep);
   // ... and then leave the list (localization mode).
@@ -141,6 +146,7 @@ class LidarMapping {
   VoxelFilter scan_filter_, keyframe_filter_;
   std::vector<Keyframe> keyframes_;
   std::vector<Eigen::Vector3d> wall_normals_;  // this scan's, for the vertical-structure prior
+  MapGravity map_gravity_;
   int scans_ = 0;
   std::optional<Eigen::Isometry3d> last_odometry_pose_;
   std::optional<Eigen::Isometry3d> last_mapped_motion_;

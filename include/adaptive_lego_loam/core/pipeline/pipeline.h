@@ -9,6 +9,7 @@
 #include "adaptive_lego_loam/core/ambient/ambient_filter.h"
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/core/common/timing.h"
+#include "adaptive_lego_loam/core/motion_sensors/motion_sensors.h"
 #include "adaptive_lego_loam/core/odometry/lidar_odometry.h"
 #include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
 
@@ -26,6 +27,8 @@ struct FrameResult {
   std::optional<LoopDetection> loop;               // when loop closure was attempted on this scan
   std::optional<LocalizationStatus> localization;  // in localization mode
   bool deskewed_by_time_field = false;
+  bool imu_used = false;    // the IMU's filter predicted this scan (de-skew, guess, priors)
+  bool wheel_used = false;  // the wheel odometry did (on its own or in the IMU's filter)
   OdometryResult odometry;
   MapMatchResult mapping;
   int sharp = 0, less_sharp = 0, flat = 0, less_flat = 0;
@@ -46,6 +49,12 @@ class Pipeline {
   // Localization on a saved map's keyframes from `start` (see LidarMapping).
   Pipeline(const Config& config, std::vector<Keyframe> map, const Eigen::Isometry3d& start);
   const FrameResult& process(const Scan& scan);
+  // The optional motion sensors' samples, as they arrive (before the scans they cover): a
+  // sample's fault is counted, the sample dropped and the fault returned (for logging).
+  std::optional<SampleFault> add_imu(const ImuSample& sample) { return motion_.add_imu(sample); }
+  std::optional<SampleFault> add_wheel_odometry(const WheelOdometrySample& sample) {
+    return motion_.add_wheel(sample);
+  }
   // At the end of the input: finishes a loop closure still in progress (see LidarMapping).
   std::optional<LoopDetection> finish_loop_closure() { return mapping_.finish_loop_closure(); }
 
@@ -53,12 +62,14 @@ class Pipeline {
   const AmbientFilterResult& filter_result() const { return filtered_; }
   const OdometryOutput& odometry_output() const { return odometry_out_; }
   const LidarMapping& mapping() const { return mapping_; }
+  const MotionSensors& motion_sensors() const { return motion_; }
   const std::vector<Keyframe>& keyframes() const { return mapping_.keyframes(); }
   std::vector<Eigen::Isometry3d> trajectory() const { return mapping_.trajectory(); }
 
  private:
   Config config_;
   AmbientFilter filter_;
+  MotionSensors motion_;
   LidarOdometry odometry_;
   LidarMapping mapping_;
   AmbientFilterResult filtered_;

@@ -1,6 +1,6 @@
 #pragma once
-// The rotation algebra the motion sensors' filter needs: the cross-product matrix and the
-// exponential and logarithm maps between rotation vectors and rotations.
+// Rotation algebra: the cross-product matrix, the exponential and logarithm maps between rotation
+// vectors and rotations, poses from a config's angles.
 
 #include <Eigen/Geometry>
 

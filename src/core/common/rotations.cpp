@@ -1,4 +1,4 @@
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 
 #include <cmath>
 

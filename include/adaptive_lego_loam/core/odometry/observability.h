@@ -1,0 +1,26 @@
+#pragma once
+// How well a registration's information (normalised by the measurement noise: 1/m^2, 1/rad^2)
+// fixes each direction of the motion: the translation's uncertainty along its principal
+// directions once the rotation is marginalised out, and the rotation's once the translation is.
+// A direction the scene does not constrain has an infinite sigma.
+
+#include <Eigen/Core>
+
+namespace adaptive_lego_loam {
+
+struct Observability {
+  // 1-sigma (m) along each principal direction of the translation, largest first, and the
+  // directions (unit columns, in the frame the information is in).
+  Eigen::Vector3d translation_sigma = Eigen::Vector3d::Constant(INFINITY);
+  Eigen::Matrix3d translation_directions = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d rotation_sigma = Eigen::Vector3d::Constant(INFINITY);  // rad, largest first
+  Eigen::Matrix3d rotation_directions = Eigen::Matrix3d::Identity();
+  // The least-constrained translation direction and its sigma.
+  Eigen::Vector3d weakest_direction() const { return translation_directions.col(0); }
+  double weakest_sigma() const { return translation_sigma(0); }
+};
+
+// From the information of [rotation vector, translation] (6 x 6, symmetric, possibly singular).
+Observability observability(const Eigen::Matrix<double, 6, 6>& information);
+
+}  // namespace adaptive_lego_loam
