@@ -12,6 +12,7 @@
 #include "adaptive_lego_loam/io/motion_sensor_files.h"
 #include "adaptive_lego_loam/sim/imu_model.h"
 #include "sim/motion_drives.h"
+#include "support/motion_samples.h"
 #include "support/temp_files.h"
 
 using namespace adaptive_lego_loam;
@@ -68,6 +69,23 @@ TEST(ImuModel, StandingStillReadsGravityAlongItsUpAxis) {
     EXPECT_LT(sample.angular_velocity.norm(), 1e-12);
   }
   EXPECT_LT(up.z(), -0.99);  // mounted upside down: its z axis points down
+}
+
+// The core's tests build an IMU's samples by differencing poses (support/motion_samples.h): the
+// simulated IMU reads the same with the same mount convention (the IMU's pose in the LiDAR
+// frame) and sign of gravity.
+TEST(ImuModel, ReadsWhatTheCoresTestsExpectOfAnImu) {
+  const auto drive = smooth_drive(winding(), 8.0);
+  const ImuOptions options = error_free();
+  const ImuModel imu(options, 1);
+  const auto pose = [&](double t) { return drive->sensor_pose(t); };
+  for (double t = 1.0; t < 7.0; t += 0.377) {
+    const ImuSample expected =
+        adaptive_lego_loam::test::imu_sample(pose, t, options.lidar_from_imu(), options.gravity);
+    const ImuSample sample = imu.exact(drive->motion(t), t);
+    EXPECT_LT((sample.angular_velocity - expected.angular_velocity).norm(), 1e-5) << t;
+    EXPECT_LT((sample.linear_acceleration - expected.linear_acceleration).norm(), 1e-3) << t;
+  }
 }
 
 // Strapdown integration (trapezoidal) of the error-free samples from the true initial state

@@ -8,6 +8,7 @@
 
 #include "adaptive_lego_loam/sim/wheel_odometry_model.h"
 #include "sim/motion_drives.h"
+#include "support/motion_samples.h"
 
 using namespace adaptive_lego_loam;
 using namespace adaptive_lego_loam::sim;
@@ -67,6 +68,22 @@ TEST(WheelOdometryModel, TheBaseFramesMotionInATurn) {
     EXPECT_NEAR(s.linear_velocity.x(), speed, 2e-3);
     EXPECT_NEAR(s.angular_velocity.z(), yaw_rate, 1e-5);
     EXPECT_EQ(s.linear_velocity.y(), 0.0);
+  }
+}
+
+// The core's tests difference the base frame's poses (support/motion_samples.h): the error-free
+// odometry reports that forward speed and yaw rate with the same mount convention.
+TEST(WheelOdometryModel, ReportsWhatTheCoresTestsExpectOfAWheelOdometry) {
+  const auto drive = smooth_drive(winding(), 8.0);
+  const WheelOdometryOptions options = error_free();
+  const WheelOdometryRun run = WheelOdometryModel(options, 1).simulate(*drive, 1.0, 7.0);
+  const auto pose = [&](double t) { return drive->sensor_pose(t); };
+  for (std::size_t i = 0; i < run.samples.size(); i += 17) {
+    const WheelOdometrySample& sample = run.samples[i];
+    const WheelOdometrySample expected =
+        adaptive_lego_loam::test::wheel_sample(pose, sample.stamp, options.lidar_from_base());
+    EXPECT_NEAR(sample.linear_velocity.x(), expected.linear_velocity.x(), 1e-4) << sample.stamp;
+    EXPECT_NEAR(sample.angular_velocity.z(), expected.angular_velocity.z(), 1e-5) << sample.stamp;
   }
 }
 
