@@ -15,18 +15,20 @@ struct Knots {
 
 Knots knots_of(const Trajectory& base, int frames) {
   const int count = std::min(frames + 2, base.frame_limit());
-  if (count < 2) {
-    throw std::invalid_argument("smooth trajectory: " + std::to_string(count) +
-                                " frame times; at least two expected");
-  }
+  if (count < 1) throw std::invalid_argument("smooth trajectory: no frame times");
   Knots knots;
-  knots.positions.resize(count, 3);
+  knots.positions.resize(std::max(count, 2), 3);
   for (int frame = 0; frame < count; ++frame) {
     const double time = base.frame_time(frame);
     const Eigen::Isometry3d pose = base.unshaken_pose(time);
     knots.times.push_back(time);
     knots.positions.row(frame) = pose.translation().transpose();
     knots.rotations.push_back(pose.linear());
+  }
+  if (count == 1) {  // a single pose: standing there
+    knots.times.push_back(knots.times.front() + 1.0);
+    knots.positions.row(1) = knots.positions.row(0);
+    knots.rotations.push_back(knots.rotations.front());
   }
   return knots;
 }
@@ -58,7 +60,7 @@ SmoothTrajectory::SmoothTrajectory(std::shared_ptr<const Trajectory> base, int f
       position_cutoff_hz_(position_cutoff_hz),
       positions_(position_spline(*base_, frames, position_cutoff_hz)),
       rotations_(rotation_spline(*base_, frames)) {
-  frame_limit_ = static_cast<int>(positions_.times().size());
+  frame_limit_ = std::min(frames + 2, base_->frame_limit());
 }
 
 Eigen::Isometry3d SmoothTrajectory::sensor_pose(double time) const {

@@ -76,6 +76,18 @@ TEST(SmoothTrajectory, MotionIsThePosesDerivatives) {
   }
 }
 
+TEST(SmoothTrajectory, OnASinglePoseItStandsThere) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(3.0, -2.0, 1.0);
+  const SmoothTrajectory smooth(
+      std::make_shared<SampledTrajectory>(std::vector<double>{5.0}, std::vector{pose}, Shake()), 1,
+      0.0);
+  EXPECT_EQ(smooth.frame_limit(), 1);
+  EXPECT_EQ(smooth.sensor_pose(0.0).matrix(), pose.matrix());
+  EXPECT_TRUE(smooth.sensor_pose(-0.1).isApprox(pose));
+  EXPECT_LT(smooth.motion(0.3).velocity.norm(), 1e-12);
+}
+
 TEST(SmoothTrajectory, SampleTimesStepAtTheRateFromTheStart) {
   const std::vector<double> times = sample_times(-0.1, 0.9, 200.0);
   ASSERT_EQ(times.size(), 201u);

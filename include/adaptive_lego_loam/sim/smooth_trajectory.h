@@ -17,7 +17,8 @@ namespace adaptive_lego_loam::sim {
 
 class SmoothTrajectory : public Trajectory {
  public:
-  // Knots: `base`'s unshaken poses at its frame times 0 to frames + 1 (fewer when it has fewer).
+  // Knots: `base`'s unshaken poses at its frame times 0 to frames + 1 (fewer when it has fewer;
+  // with one, it stands there).
   // position_cutoff_hz 0: the positions' spline passes through every knot (a frame's pose is the
   // base's); above 0 it is the smoothing spline of that cutoff (SmoothingSpline), for recorded
   // poses whose noise would otherwise be differentiated into accelerations no vehicle makes.
