@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+
 namespace adaptive_lego_loam::sim {
 namespace {
 
@@ -75,6 +77,69 @@ void emit_sensor(YAML::Emitter& out, const RunDescription& run) {
   out << YAML::EndMap;
 }
 
+void emit_triple(YAML::Emitter& out, const char* key, const std::array<double, 3>& values) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << values[0] << values[1]
+      << values[2] << YAML::EndSeq;
+}
+
+void emit_vector(YAML::Emitter& out, const char* key, const Eigen::Vector3d& v) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << v.x() << v.y() << v.z()
+      << YAML::EndSeq;
+}
+
+void emit_imu(YAML::Emitter& out, const ImuDescription& imu) {
+  const ImuOptions& o = imu.options;
+  const ImuDatasheet& d = o.datasheet;
+  out << YAML::Key << "imu" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "datasheet" << YAML::Value << d.name;
+  out << YAML::Key << "rate_hz" << YAML::Value << o.rate_hz;
+  out << YAML::Key << "frame" << YAML::Value << "imu";
+  emit_triple(out, "mount_rpy_deg", o.mount_rpy_deg);
+  emit_triple(out, "mount_xyz_m", o.mount_xyz_m);
+  out << YAML::Key << "gravity" << YAML::Value << o.gravity;
+  out << YAML::Key << "gyro_noise_density" << YAML::Value << d.gyro_noise_density;
+  out << YAML::Key << "accel_noise_density" << YAML::Value << d.accel_noise_density;
+  out << YAML::Key << "gyro_bias_stability" << YAML::Value << d.gyro_bias_stability;
+  out << YAML::Key << "accel_bias_stability" << YAML::Value << d.accel_bias_stability;
+  out << YAML::Key << "gyro_bias_random_walk" << YAML::Value << d.gyro_bias_random_walk();
+  out << YAML::Key << "accel_bias_random_walk" << YAML::Value << d.accel_bias_random_walk();
+  out << YAML::Key << "gyro_turn_on_bias_sigma" << YAML::Value << d.gyro_turn_on_bias;
+  out << YAML::Key << "accel_turn_on_bias_sigma" << YAML::Value << d.accel_turn_on_bias;
+  out << YAML::Key << "white_noise" << YAML::Value << o.white_noise;
+  out << YAML::Key << "bias_random_walk" << YAML::Value << o.bias_random_walk;
+  out << YAML::Key << "turn_on_bias" << YAML::Value << o.turn_on_bias;
+  emit_vector(out, "gyro_turn_on_bias", imu.errors.gyro_turn_on_bias);
+  emit_vector(out, "accel_turn_on_bias", imu.errors.accel_turn_on_bias);
+  out << YAML::EndMap;
+}
+
+void emit_wheel_odometry(YAML::Emitter& out, const WheelOdometryDescription& wheel) {
+  const WheelOdometryOptions& o = wheel.options;
+  out << YAML::Key << "wheel_odometry" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "rate_hz" << YAML::Value << o.rate_hz;
+  out << YAML::Key << "frame" << YAML::Value << "base_link";
+  emit_triple(out, "mount_rpy_deg", o.mount_rpy_deg);
+  emit_triple(out, "mount_xyz_m", o.mount_xyz_m);
+  out << YAML::Key << "track_width_m" << YAML::Value << o.track_width_m;
+  out << YAML::Key << "wheel_speed_noise" << YAML::Value << (o.noise ? o.wheel_speed_noise : 0.0);
+  out << YAML::Key << "scale_error" << YAML::Value << wheel.errors.scale_error;
+  out << YAML::Key << "track_width_error" << YAML::Value << wheel.errors.track_width_error;
+  out << YAML::Key << "slips_per_km" << YAML::Value << wheel.errors.slips_per_km;
+  out << YAML::Key << "slips" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (const SlipEvent& slip : wheel.slips) {
+    out << YAML::BeginMap;
+    out << YAML::Key << "start_s" << YAML::Value << slip.start_s;
+    out << YAML::Key << "duration_s" << YAML::Value << slip.duration_s;
+    out << YAML::Key << "excess" << YAML::Value << slip.excess;
+    out << YAML::Key << "wheel" << YAML::Value << (slip.left_wheel ? "left" : "right");
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "reported_speed_sigma" << YAML::Value << o.reported_speed_sigma;
+  out << YAML::Key << "reported_yaw_rate_sigma" << YAML::Value << o.reported_yaw_rate_sigma;
+  out << YAML::EndMap;
+}
+
 }  // namespace
 
 std::string run_yaml(const RunDescription& run) {
@@ -93,8 +158,14 @@ std::string run_yaml(const RunDescription& run) {
     out << YAML::Key << "trajectory_times" << YAML::Value << run.trajectory_times_path;
   out << YAML::Key << "path_length_m" << YAML::Value << run.path_length_m;
   out << YAML::Key << "drive_length_m" << YAML::Value << run.drive_length_m;
+  if (run.trajectory_cutoff_hz > 0.0)
+    out << YAML::Key << "trajectory_cutoff_hz" << YAML::Value << run.trajectory_cutoff_hz;
   emit_sensor(out, run);
   emit_scenario(out, run.request.scenario);
+  if (run.imu) emit_imu(out, *run.imu);
+  if (run.wheel_odometry) emit_wheel_odometry(out, *run.wheel_odometry);
+  if (!run.sensor_faults.empty())
+    out << YAML::Key << "sensor_faults" << YAML::Value << YAML::Flow << run.sensor_faults;
   out << YAML::Key << "labels" << YAML::Value
       << "uint32 per point: semantic class (SemanticKITTI ids) in the lower 16 bits, instance "
          "id in the upper 16";
@@ -103,6 +174,43 @@ std::string run_yaml(const RunDescription& run) {
          "(KITTI 3x4)";
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
+}
+
+std::string sensors_yaml(const RunDescription& run) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(10);
+  out << YAML::BeginMap;
+  if (run.imu) {
+    const ImuOptions& o = run.imu->options;
+    const ImuDatasheet& d = o.datasheet;
+    out << YAML::Key << "imu" << YAML::Value << YAML::BeginMap;
+    emit_triple(out, "extrinsic_rpy_deg", o.mount_rpy_deg);
+    emit_triple(out, "extrinsic_xyz_m", o.mount_xyz_m);
+    out << YAML::Key << "time_offset_s" << YAML::Value << 0.0;
+    out << YAML::Key << "gyro_noise_density" << YAML::Value << d.gyro_noise_density;
+    out << YAML::Key << "accel_noise_density" << YAML::Value << d.accel_noise_density;
+    out << YAML::Key << "gyro_bias_random_walk" << YAML::Value << d.gyro_bias_random_walk();
+    out << YAML::Key << "accel_bias_random_walk" << YAML::Value << d.accel_bias_random_walk();
+    out << YAML::Key << "gyro_bias_sigma" << YAML::Value << d.gyro_turn_on_bias;
+    out << YAML::Key << "accel_bias_sigma" << YAML::Value << d.accel_turn_on_bias;
+    out << YAML::Key << "gravity" << YAML::Value << o.gravity;
+    out << YAML::EndMap;
+  }
+  if (run.wheel_odometry) {
+    const WheelOdometryOptions& o = run.wheel_odometry->options;
+    out << YAML::Key << "wheel_odometry" << YAML::Value << YAML::BeginMap;
+    emit_triple(out, "extrinsic_rpy_deg", o.mount_rpy_deg);
+    emit_triple(out, "extrinsic_xyz_m", o.mount_xyz_m);
+    out << YAML::Key << "time_offset_s" << YAML::Value << 0.0;
+    out << YAML::Key << "speed_sigma" << YAML::Value << o.reported_speed_sigma;
+    out << YAML::Key << "yaw_rate_sigma_deg" << YAML::Value
+        << o.reported_yaw_rate_sigma * 180.0 / M_PI;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+  return "# The simulated motion sensors' true extrinsics and noise (lidar_sim, from the IMU's\n"
+         "# datasheet and the wheel odometry's model): sections to paste into a config.\n" +
+         std::string(out.c_str()) + "\n";
 }
 
 }  // namespace adaptive_lego_loam::sim

@@ -267,6 +267,9 @@ GeneratedScene generate_scene(const SceneRequest& request) {
   TerrainModel terrain(*scene.path, p, hills, relief, !recorded, request.reach);
   const RoadPlan plan = plan_road(request, *scene.path, terrain);
   scene.world = populate(request, scene, terrain, plan, ego_start_s, recorded);
+  scene.motion = std::make_shared<const SmoothTrajectory>(scene.trajectory, request.frames,
+                                                          recorded ? kRecordedCutoffHz : 0.0);
+  scene.trajectory = scene.motion;
   return scene;
 }
 

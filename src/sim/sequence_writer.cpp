@@ -5,13 +5,15 @@
 #include <fstream>
 
 #include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/motion_sensor_files.h"
 #include "adaptive_lego_loam/io/scan_files.h"
 
 namespace adaptive_lego_loam::sim {
 namespace fs = std::filesystem;
 namespace {
 
-const char* const kSequenceFiles[] = {"poses.txt", "times.txt", "calib.txt", "scenario.yaml"};
+const char* const kSequenceFiles[] = {"poses.txt", "times.txt",      "calib.txt",   "scenario.yaml",
+                                      "imu.csv",   "wheel_odom.csv", "sensors.yaml"};
 
 std::string frame_name(int index, const char* extension) {
   char name[32];
@@ -76,6 +78,18 @@ void SequenceWriter::finish(const std::string& scenario_yaml) {
     calib += std::string(key) + ": " + identity + "\n";
   write_text(root / "calib.txt", calib);
   write_text(root / "scenario.yaml", scenario_yaml);
+}
+
+void SequenceWriter::write_imu(const std::vector<ImuSample>& samples) {
+  write_imu_csv((fs::path(dir_) / "imu.csv").string(), samples);
+}
+
+void SequenceWriter::write_wheel_odometry(const std::vector<WheelOdometrySample>& samples) {
+  write_wheel_odometry_csv((fs::path(dir_) / "wheel_odom.csv").string(), samples);
+}
+
+void SequenceWriter::write_sensors_yaml(const std::string& text) {
+  write_text(fs::path(dir_) / "sensors.yaml", text);
 }
 
 void write_labels(const std::string& path, const std::vector<uint32_t>& labels) {

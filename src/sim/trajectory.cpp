@@ -41,11 +41,27 @@ Shake::Shake(const ShakeParams& params, uint64_t seed) {
   pitch_ = make_waves(degrees_to_radians(params.pitch_deg));
 }
 
-double Shake::sum(const std::vector<Wave>& waves, double time) {
+double Shake::sum(const std::vector<Wave>& waves, double time, int derivative) {
   double value = 0.0;
-  for (const Wave& wave : waves)
-    value += wave.amplitude * std::sin(2.0 * M_PI * wave.frequency_hz * time + wave.phase);
+  for (const Wave& wave : waves) {
+    const double omega = 2.0 * M_PI * wave.frequency_hz;
+    const double angle = omega * time + wave.phase;
+    if (derivative == 0) value += wave.amplitude * std::sin(angle);
+    if (derivative == 1) value += wave.amplitude * omega * std::cos(angle);
+    if (derivative == 2) value -= wave.amplitude * omega * omega * std::sin(angle);
+  }
   return value;
+}
+
+Eigen::Matrix3d Shake::axes(double time) const {
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Zero();
+  if (vertical_.empty()) return axes;
+  for (int derivative = 0; derivative < 3; ++derivative) {
+    axes(0, derivative) = sum(vertical_, time, derivative);
+    axes(1, derivative) = sum(roll_, time, derivative);
+    axes(2, derivative) = sum(pitch_, time, derivative);
+  }
+  return axes;
 }
 
 Eigen::Isometry3d Shake::at(double time) const {
@@ -84,14 +100,23 @@ int PathTrajectory::frame_limit() const {
   return frames;
 }
 
+const Shake& Trajectory::shake() const {
+  static const Shake none;
+  return none;
+}
+
 Eigen::Isometry3d PathTrajectory::sensor_pose(double time) const {
+  return unshaken_pose(time) * shake_.at(time);
+}
+
+Eigen::Isometry3d PathTrajectory::unshaken_pose(double time) const {
   const Path::Frame frame = path_->at(arc_length(time));
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translate(frame.position + lateral_offset_ * frame.left);
   pose.rotate(Eigen::AngleAxisd(frame.heading, Eigen::Vector3d::UnitZ()));
   pose.rotate(Eigen::AngleAxisd(-std::atan(frame.grade), Eigen::Vector3d::UnitY()));
   pose.translate(Eigen::Vector3d(0.0, 0.0, sensor_height_));
-  return pose * shake_.at(time);
+  return pose;
 }
 
 SampledTrajectory::SampledTrajectory(std::vector<double> times,
@@ -105,6 +130,10 @@ SampledTrajectory::SampledTrajectory(std::vector<double> times,
 }
 
 Eigen::Isometry3d SampledTrajectory::sensor_pose(double time) const {
+  return unshaken_pose(time) * shake_.at(time);
+}
+
+Eigen::Isometry3d SampledTrajectory::unshaken_pose(double time) const {
   // Before the first sample the drive goes on as over its first step (the first sweep of a drive
   // entered at speed is skewed like the others); after the last it stands.
   const bool before = time < 0.0 && times_.size() > 1;
@@ -114,7 +143,7 @@ Eigen::Isometry3d SampledTrajectory::sensor_pose(double time) const {
       before ? times_.begin() + 1 : std::upper_bound(times_.begin(), times_.end(), t);
   const std::size_t i =
       after == times_.end() ? times_.size() - 1 : static_cast<std::size_t>(after - times_.begin());
-  if (i == 0 || times_[i] == t) return poses_[i] * shake_.at(time);
+  if (i == 0 || times_[i] == t) return poses_[i];
   const double f = (t - times_[i - 1]) / (times_[i] - times_[i - 1]);
   const Eigen::Quaterniond q0(poses_[i - 1].linear()), q1(poses_[i].linear());
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -122,7 +151,7 @@ Eigen::Isometry3d SampledTrajectory::sensor_pose(double time) const {
   Eigen::Quaterniond rotation = q0.slerp(f, q1);
   if (before) rotation.normalize();  // slerp extrapolated near the identity is not unit
   pose.linear() = rotation.toRotationMatrix();
-  return pose * shake_.at(time);
+  return pose;
 }
 
 std::vector<Eigen::Isometry3d> camera_poses_to_vehicle_axes(

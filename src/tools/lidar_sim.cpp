@@ -3,26 +3,37 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <boost/make_shared.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nav_msgs/Odometry.h>
+#include <ros/message_traits.h>
 #include <rosbag/bag.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/progress.h"
 #include "adaptive_lego_loam/ros/cloud_conversions.h"
+#include "adaptive_lego_loam/ros/motion_sensor_conversions.h"
+#include "adaptive_lego_loam/ros/pose_conversions.h"
+#include "adaptive_lego_loam/sim/imu_model.h"
+#include "adaptive_lego_loam/sim/motion_sensor_faults.h"
 #include "adaptive_lego_loam/sim/run_description.h"
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/sequence_writer.h"
 #include "adaptive_lego_loam/sim/simulator.h"
+#include "adaptive_lego_loam/sim/wheel_odometry_model.h"
 #include "tool_main.h"
 
 using namespace adaptive_lego_loam;
@@ -47,7 +58,18 @@ struct Options {
   double sensor_height = 1.73;
   bool identical_houses = false;
   bool overwrite = false;
+  // Motion sensors.
+  bool imu = false, wheel_odometry = false;
+  double imu_rate = 200.0, odom_rate = 50.0;
+  std::vector<std::string> motion_errors{"all"};
+  bool perfect_motion_sensors = false;
+  std::vector<double> imu_mount;
+  std::string sensor_faults;
 };
+
+const std::vector<std::string> kMotionErrors = {
+    "all",         "none",        "imu-noise",  "imu-bias-walk", "imu-turn-on-bias",
+    "wheel-scale", "wheel-noise", "wheel-slips"};
 
 // The sensor's config and its firings per turn: the VLP-16 fires 1800 times per turn at 10 Hz,
 // as its config's columns; the HDL-64E about 2083 times (KITTI's config has 2200 columns of
@@ -115,9 +137,128 @@ SceneRequest make_request(const Options& o, const SensorParams& sensor) {
   return request;
 }
 
+bool error_on(const Options& o, const std::string& error) {
+  if (o.perfect_motion_sensors) return false;
+  const auto& list = o.motion_errors;
+  const auto has = [&](const std::string& name) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+  };
+  return !has("none") && (has("all") || has(error));
+}
+
+// The IMU and wheel odometry along the drive, on the scans' clock from the first sweep's start
+// to the last scan, with the faults asked for.
+struct MotionSensorData {
+  std::optional<ImuDescription> imu;
+  std::vector<ImuSample> imu_samples;
+  std::optional<WheelOdometryDescription> wheel;
+  std::vector<WheelOdometrySample> wheel_samples;
+  std::vector<std::string> faults;
+};
+
+MotionSensorData simulate_motion_sensors(const Options& o, const GeneratedScene& scene,
+                                         double scan_period) {
+  MotionSensorData data;
+  const double from = scene.motion->frame_time(0) - scan_period;
+  const double to = scene.motion->frame_time(o.frames - 1);
+  const std::vector<SensorFault> faults =
+      o.sensor_faults.empty() ? std::vector<SensorFault>() : parse_faults(o.sensor_faults);
+  for (const SensorFault& fault : faults)
+    data.faults.push_back(fault_name(fault));
+  if (o.imu) {
+    ImuOptions options;
+    options.rate_hz = o.imu_rate;
+    if (!o.imu_mount.empty()) {
+      std::copy(o.imu_mount.begin(), o.imu_mount.begin() + 3, options.mount_rpy_deg.begin());
+      std::copy(o.imu_mount.begin() + 3, o.imu_mount.end(), options.mount_xyz_m.begin());
+    }
+    options.white_noise = error_on(o, "imu-noise");
+    options.bias_random_walk = error_on(o, "imu-bias-walk");
+    options.turn_on_bias = error_on(o, "imu-turn-on-bias");
+    const ImuModel model(options, o.seed);
+    data.imu_samples = model.simulate(*scene.motion, from, to);
+    apply_faults(faults, data.imu_samples);
+    data.imu = ImuDescription{model.options(), model.errors()};
+  }
+  if (o.wheel_odometry) {
+    WheelOdometryOptions options;
+    options.rate_hz = o.odom_rate;
+    options.mount_xyz_m[2] = -o.sensor_height;
+    options.scale_error = error_on(o, "wheel-scale");
+    options.noise = error_on(o, "wheel-noise");
+    options.slips = error_on(o, "wheel-slips");
+    const WheelOdometryModel model(options, o.seed);
+    WheelOdometryRun run = model.simulate(*scene.motion, from, to);
+    data.wheel_samples = std::move(run.samples);
+    apply_faults(faults, data.wheel_samples);
+    data.wheel = WheelOdometryDescription{model.options(), model.errors(), run.slips};
+  }
+  return data;
+}
+
+// A message type's connection header for rosbag, latched as a static transform's publisher is.
+template <typename Message>
+boost::shared_ptr<ros::M_string> latched_connection() {
+  auto header = boost::make_shared<ros::M_string>();
+  (*header)["type"] = ros::message_traits::datatype<Message>();
+  (*header)["md5sum"] = ros::message_traits::md5sum<Message>();
+  (*header)["message_definition"] = ros::message_traits::definition<Message>();
+  (*header)["callerid"] = "/lidar_sim";
+  (*header)["latching"] = "1";
+  return header;
+}
+
 class BagOutput {
  public:
-  explicit BagOutput(const std::string& path) { bag_.open(path, rosbag::bagmode::Write); }
+  BagOutput(const std::string& path, const MotionSensorData& motion)
+      : motion_(motion), odometry_poses_(integrate_odometry(motion.wheel_samples)) {
+    bag_.open(path, rosbag::bagmode::Write);
+    if (motion.imu && motion.imu->options.white_noise) {
+      gyro_variance_ = std::pow(motion.imu->options.gyro_noise_sigma(), 2);
+      accel_variance_ = std::pow(motion.imu->options.accel_noise_sigma(), 2);
+    }
+  }
+
+  // velodyne -> imu and base_link -> velodyne on /tf_static, at the bag's start.
+  void write_static_transforms(double time) {
+    tf2_msgs::TFMessage transforms;
+    std_msgs::Header header;
+    header.stamp.fromSec(kBagStartStamp + time);
+    if (motion_.imu) {
+      header.frame_id = "velodyne";
+      transforms.transforms.push_back(
+          ros_bridge::transform_to_ros(motion_.imu->options.lidar_from_imu(), header, "imu"));
+    }
+    if (motion_.wheel) {
+      header.frame_id = "base_link";
+      transforms.transforms.push_back(ros_bridge::transform_to_ros(
+          motion_.wheel->options.lidar_from_base().inverse(), header, "velodyne"));
+    }
+    if (transforms.transforms.empty()) return;
+    bag_.write("/tf_static", header.stamp, transforms, latched_connection<tf2_msgs::TFMessage>());
+  }
+
+  // The motion sensors' samples up to `time` (s, the scans' clock): /imu/data and /odom.
+  void write_motion_until(double time) {
+    const auto& imu = motion_.imu_samples;
+    for (; next_imu_ < imu.size() && imu[next_imu_].stamp <= time; ++next_imu_) {
+      std_msgs::Header header;
+      header.stamp.fromSec(kBagStartStamp + imu[next_imu_].stamp);
+      header.frame_id = "imu";
+      bag_.write("/imu/data", arrival(header.stamp),
+                 ros_bridge::imu_to_ros(imu[next_imu_], header, gyro_variance_, accel_variance_));
+    }
+    const auto& wheel = motion_.wheel_samples;
+    for (; next_wheel_ < wheel.size() && wheel[next_wheel_].stamp <= time; ++next_wheel_) {
+      std_msgs::Header header;
+      header.stamp.fromSec(kBagStartStamp + wheel[next_wheel_].stamp);
+      header.frame_id = "odom";
+      bag_.write("/odom", arrival(header.stamp),
+                 ros_bridge::wheel_odometry_to_ros(wheel[next_wheel_], odometry_poses_[next_wheel_],
+                                                   header, "base_link"));
+    }
+  }
+
   void write(const SimFrame& frame, const Eigen::Isometry3d& relative_pose) {
     std_msgs::Header header;
     header.stamp.fromSec(kBagStartStamp + frame.time);
@@ -140,7 +281,19 @@ class BagOutput {
   }
 
  private:
+  // When a message is written: in stamp order, but a stamp out of order (a fault) arrives
+  // after the ones before it.
+  ros::Time arrival(const ros::Time& stamp) {
+    latest_ = std::max(latest_, stamp);
+    return latest_;
+  }
+
   rosbag::Bag bag_;
+  const MotionSensorData& motion_;
+  std::vector<Eigen::Isometry3d> odometry_poses_;
+  std::size_t next_imu_ = 0, next_wheel_ = 0;
+  double gyro_variance_ = 0.0, accel_variance_ = 0.0;
+  ros::Time latest_;
 };
 
 void print_class_shares(const std::map<uint16_t, long>& counts, long total) {
@@ -179,8 +332,12 @@ int run(Options& o) {
       scene.world->moving_cars.size(), scene.world->walkers.size(), scene.path_length_m,
       build_seconds);
 
+  const MotionSensorData motion = simulate_motion_sensors(o, scene, config.sensor.scan_period);
   std::unique_ptr<BagOutput> bag;
-  if (!o.bag.empty()) bag = std::make_unique<BagOutput>(o.bag);
+  if (!o.bag.empty()) {
+    bag = std::make_unique<BagOutput>(o.bag, motion);
+    bag->write_static_transforms(scene.motion->frame_time(0) - config.sensor.scan_period);
+  }
   ProgressBar progress("lidar_sim", o.frames);
   std::map<uint16_t, long> class_counts;
   long points = 0;
@@ -190,7 +347,10 @@ int run(Options& o) {
   for (int frame = 0; frame < o.frames; ++frame) {
     simulator.render(frame, simulated);
     writer.write_frame(frame, simulated);
-    if (bag) bag->write(simulated, writer.relative_poses().back());
+    if (bag) {
+      bag->write_motion_until(simulated.time);
+      bag->write(simulated, writer.relative_poses().back());
+    }
     for (uint32_t label : simulated.labels)
       ++class_counts[static_cast<uint16_t>(label & 0xFFFFu)];
     points += static_cast<long>(simulated.labels.size());
@@ -213,6 +373,13 @@ int run(Options& o) {
   description.sensor_options = sensor_options;
   description.path_length_m = scene.path_length_m;
   description.drive_length_m = scene.drive_length_m;
+  description.trajectory_cutoff_hz = scene.motion->position_cutoff_hz();
+  description.imu = motion.imu;
+  description.wheel_odometry = motion.wheel;
+  description.sensor_faults = motion.faults;
+  if (motion.imu) writer.write_imu(motion.imu_samples);
+  if (motion.wheel) writer.write_wheel_odometry(motion.wheel_samples);
+  if (motion.imu || motion.wheel) writer.write_sensors_yaml(sensors_yaml(description));
   writer.finish(run_yaml(description));
 
   print_class_shares(class_counts, points);
@@ -296,9 +463,51 @@ int main(int argc, char** argv) {
                "urban or loop: the same house on every lot, no side streets, trees or bushes (a "
                "street where every place looks alike)");
   app.add_flag("--overwrite", o.overwrite, "replace a sequence already in --output");
+  app.add_flag("--imu", o.imu,
+               "also simulate an IMU (ADIS16448, mounted rotated and offset from the LiDAR): "
+               "imu.csv, sensors.yaml and, with --bag, /imu/data and /tf_static");
+  app.add_flag("--wheel-odom", o.wheel_odometry,
+               "also simulate a wheel odometry (the rear axle's forward speed and yaw rate): "
+               "wheel_odom.csv, sensors.yaml and, with --bag, /odom and /tf_static");
+  app.add_option("--imu-rate", o.imu_rate, "IMU samples per second (default 200)")
+      ->check(CLI::Range(1.0, 2000.0));
+  app.add_option("--odom-rate", o.odom_rate, "wheel odometry samples per second (default 50)")
+      ->check(CLI::Range(1.0, 1000.0));
+  app.add_option("--motion-errors", o.motion_errors,
+                 "the motion sensors' errors to simulate: all (default), none, or a list of "
+                 "imu-noise, imu-bias-walk, imu-turn-on-bias, wheel-scale, wheel-noise, "
+                 "wheel-slips")
+      ->delimiter(',')
+      ->check(CLI::IsMember(kMotionErrors));
+  app.add_flag("--perfect-motion-sensors", o.perfect_motion_sensors,
+               "the motion sensors without any error (as --motion-errors none)");
+  app.add_option("--imu-mount", o.imu_mount,
+                 "the IMU's pose in the LiDAR frame: roll,pitch,yaw (deg, R = Rz Ry Rx),x,y,z "
+                 "(m) (default 180,2.5,90,-0.12,0.08,-0.18)")
+      ->delimiter(',')
+      ->expected(6);
+  app.add_option("--sensor-faults", o.sensor_faults,
+                 "faults in the motion sensors' samples: SENSOR:KIND@TIME,... with SENSOR imu or "
+                 "wheel, KIND nan, repeat, disorder, gap (2 s), rate_drop (2 s at a quarter "
+                 "rate) or absurd, TIME in s (docs/simulator.md)");
   if (const auto status = tools::parse_command_line(app, argc, argv, "lidar_sim")) return *status;
   if (!o.trajectory_times.empty() && o.trajectory.empty()) {
     return tools::usage_error("lidar_sim", "--trajectory-times needs --trajectory");
+  }
+  bool motion_options = false;
+  for (const char* option : {"--imu-rate", "--odom-rate", "--motion-errors",
+                             "--perfect-motion-sensors", "--imu-mount", "--sensor-faults"})
+    motion_options |= app.count(option) > 0;
+  if (motion_options && !o.imu && !o.wheel_odometry) {
+    return tools::usage_error("lidar_sim",
+                              "the motion sensors' options need --imu or --wheel-odom");
+  }
+  if (!o.sensor_faults.empty()) {
+    try {
+      parse_faults(o.sensor_faults);
+    } catch (const std::invalid_argument& error) {
+      return tools::usage_error("lidar_sim", std::string("--sensor-faults ") + error.what());
+    }
   }
   if (!o.trajectory.empty() && o.speed) {
     return tools::usage_error("lidar_sim",

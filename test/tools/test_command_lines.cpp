@@ -72,3 +72,18 @@ TEST(CommandLines, BadInputExitsOneWithOneLineNamingTheFile) {
     EXPECT_NE(output.find(missing), std::string::npos) << name << ": " << output;
   }
 }
+
+// The motion sensors' options without a motion sensor, or a fault list that does not parse, are
+// a wrong command line: lidar_sim says so before it builds a scene.
+TEST(CommandLines, LidarSimMotionSensorOptionsAreChecked) {
+  const std::string sim =
+      tool("lidar_sim") + " --scenario urban --sensor vlp16 --frames 2 --output /tmp/alego_sim ";
+  for (const std::string& arguments :
+       {std::string("--imu-rate 100"), std::string("--imu --sensor-faults imu:melt@3"),
+        std::string("--wheel-odom --motion-errors wheel-noise,bogus")}) {
+    const auto [status, output] = stderr_of(sim + arguments);
+    EXPECT_EQ(status, 2) << arguments << ": " << output;
+    EXPECT_EQ(lines_of(output), 1) << output;
+    EXPECT_EQ(output.rfind("lidar_sim: ", 0), 0u) << output;
+  }
+}

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_lego_loam/sim/smooth_trajectory.h"
 #include "adaptive_lego_loam/sim/trajectory.h"
 #include "adaptive_lego_loam/sim/world.h"
 
@@ -102,10 +103,18 @@ struct SceneRequest {
 struct GeneratedScene {
   std::shared_ptr<World> world;
   std::shared_ptr<const Path> path;
+  // Where the sensor is: the drive's poses joined smoothly (SmoothTrajectory), its frames' poses
+  // those of the drive (of a recorded one, smoothed to kRecordedCutoffHz).
   std::shared_ptr<const Trajectory> trajectory;
+  // The same with its derivatives, for the IMU and the wheel odometry.
+  std::shared_ptr<const SmoothTrajectory> motion;
   double path_length_m = 0.0;
   double drive_length_m = 0.0;  // driven over the requested frames
 };
+
+// A recorded trajectory's positions are smoothed to this cutoff: KITTI's ground truth carries
+// centimetres of noise that, differentiated twice, would be accelerations of 10-50 m/s^2.
+constexpr double kRecordedCutoffHz = 1.0;
 
 // Throws std::invalid_argument when the request cannot be met (e.g. more frames than a recorded
 // trajectory holds).

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_lego_loam/core/motion_sensors/samples.h"
 #include "adaptive_lego_loam/sim/simulator.h"
 
 namespace adaptive_lego_loam::sim {
@@ -20,6 +21,11 @@ class SequenceWriter {
   void write_frame(int index, const SimFrame& frame);
   // Writes poses.txt (relative to the first frame's pose), times.txt, calib.txt, scenario.yaml.
   void finish(const std::string& scenario_yaml);
+  // The motion sensors' files, when they are simulated: imu.csv, wheel_odom.csv
+  // (io/motion_sensor_files.h) and sensors.yaml (run_description.h's sensors_yaml).
+  void write_imu(const std::vector<ImuSample>& samples);
+  void write_wheel_odometry(const std::vector<WheelOdometrySample>& samples);
+  void write_sensors_yaml(const std::string& text);
 
   // Sensor poses relative to the first frame, as written to poses.txt.
   const std::vector<Eigen::Isometry3d>& relative_poses() const { return relative_poses_; }

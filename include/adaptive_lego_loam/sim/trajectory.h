@@ -23,14 +23,19 @@ class Shake {
  public:
   Shake() = default;
   Shake(const ShakeParams& params, uint64_t seed);
-  // The offset of the sensor from its smooth pose (applied in the sensor frame).
+  // The offset of the sensor from its smooth pose (applied in the sensor frame): up by the
+  // vertical offset, then turned by Rx(roll) Ry(pitch).
   Eigen::Isometry3d at(double time) const;
+  // The vertical offset (m), roll and pitch (rad) at `time` (rows) and their first and second
+  // time derivatives (columns 1 and 2).
+  Eigen::Matrix3d axes(double time) const;
 
  private:
   struct Wave {
     double amplitude, frequency_hz, phase;
   };
-  static double sum(const std::vector<Wave>& waves, double time);
+  // The sum of the waves at `time`, or its first or second derivative.
+  static double sum(const std::vector<Wave>& waves, double time, int derivative = 0);
   std::vector<Wave> vertical_, roll_, pitch_;
 };
 
@@ -39,6 +44,10 @@ class Trajectory {
   virtual ~Trajectory() = default;
   // The sensor's pose in the world at `time` (s).
   virtual Eigen::Isometry3d sensor_pose(double time) const = 0;
+  // The same without the rough road's shake, and the shake: sensor_pose(time) =
+  // unshaken_pose(time) * shake().at(time). By default no shake.
+  virtual Eigen::Isometry3d unshaken_pose(double time) const { return sensor_pose(time); }
+  virtual const Shake& shake() const;
   // Start time of frame `frame`'s sweep.
   virtual double frame_time(int frame) const = 0;
   // How many frames the trajectory covers.
@@ -62,6 +71,8 @@ class PathTrajectory : public Trajectory {
                  double lateral_offset, double sensor_height, const Shake& shake,
                  double frame_period);
   Eigen::Isometry3d sensor_pose(double time) const override;
+  Eigen::Isometry3d unshaken_pose(double time) const override;
+  const Shake& shake() const override { return shake_; }
   double frame_time(int frame) const override { return frame * frame_period_; }
   int frame_limit() const override;
   double arc_length(double time) const { return start_s_ + speed_.distance(time); }
@@ -81,6 +92,8 @@ class SampledTrajectory : public Trajectory {
   SampledTrajectory(std::vector<double> times, std::vector<Eigen::Isometry3d> sensor_poses,
                     const Shake& shake);
   Eigen::Isometry3d sensor_pose(double time) const override;
+  Eigen::Isometry3d unshaken_pose(double time) const override;
+  const Shake& shake() const override { return shake_; }
   double frame_time(int frame) const override { return times_.at(frame) - times_.front(); }
   int frame_limit() const override { return static_cast<int>(times_.size()); }
   const std::vector<Eigen::Isometry3d>& smooth_poses() const { return poses_; }
