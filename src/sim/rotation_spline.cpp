@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 #include "adaptive_lego_loam/sim/smoothing_spline.h"
 
 namespace adaptive_lego_loam::sim {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 #include "adaptive_lego_loam/sim/random.h"
 
 namespace adaptive_lego_loam::sim {

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 #include "adaptive_lego_loam/io/motion_sensor_files.h"
 #include "adaptive_lego_loam/sim/imu_model.h"
 #include "sim/motion_drives.h"

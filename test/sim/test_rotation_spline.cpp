@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 #include "adaptive_lego_loam/sim/rotation_spline.h"
 
 using namespace adaptive_lego_loam;

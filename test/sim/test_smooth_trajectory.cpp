@@ -6,7 +6,7 @@
 #include <cmath>
 #include <memory>
 
-#include "adaptive_lego_loam/core/motion_sensors/rotations.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/sim/path.h"
 #include "adaptive_lego_loam/sim/smooth_trajectory.h"
