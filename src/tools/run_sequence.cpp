@@ -414,6 +414,15 @@ int run(const Options& options) {
       last_stamp = scan->stamp;
       motion_sensors.feed_until(scan->stamp, *pipeline);
       const FrameResult& result = pipeline->process(*scan);
+      static std::FILE* dump = std::getenv("ALEGO_DUMP_INFO")
+                                   ? std::fopen(std::getenv("ALEGO_DUMP_INFO"), "w")
+                                   : nullptr;
+      if (dump) {
+        std::fprintf(dump, "%d %d", result.frame, int(result.mapping.matched));
+        for (int i = 0; i < 36; ++i) std::fprintf(dump, " %.9g", result.mapping.information(i / 6, i % 6));
+        std::fprintf(dump, " %d %d\n", result.mapping.edge_matches, result.mapping.plane_matches);
+        std::fflush(dump);
+      }
       heap_trimmer.after_scan();
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;

@@ -43,7 +43,7 @@ void InertialFilter::initialize(double stamp, const Eigen::Vector3d& specific_fo
   state_.stamp = stamp;
   // The least rotation that turns the measured up onto the world's z: yaw 0.
   state_.rotation =
-      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), specific_force.normalized())
+      Eigen::Quaterniond::FromTwoVectors(specific_force.normalized(), Eigen::Vector3d::UnitZ())
           .toRotationMatrix();
   state_.position.setZero();
   state_.velocity = state_.rotation * body_velocity;

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -14,7 +15,14 @@ namespace {
 // The filter starts level by the mean specific force over this long before a scan.
 constexpr double kLevellingWindow = 0.2;  // s
 // Its velocity at the start: the LiDAR's last motion, to this; with none yet, unknown.
-constexpr double kStartVelocitySigma = 0.5;     // m/s
+constexpr double kStartVelocitySigma = 2.0;     // m/s
+// The filter starts after this many mapped motions in a row: the first pair of scans is
+// registered from a search and the first sweep is not de-skewed.
+constexpr int kStartAfterMotions = 3;
+// A LiDAR motion this far from the filter's (RMS sigmas) is refused; this many in a row and the
+// filter, not the LiDAR, is taken to be wrong: it starts again.
+constexpr double kLidarGate = 20.0;
+constexpr int kRefusalsBeforeRestart = 3;
 constexpr double kUnknownVelocitySigma = 10.0;  // m/s
 // The wheel's sideways and vertical speed of the base: 0 but for side slip and bumps.
 constexpr double kSideSpeedSigma = 0.05;  // m/s
@@ -296,17 +304,27 @@ void MotionSensors::update(const std::optional<Eigen::Isometry3d>& mapped_motion
       const Matrix6d to_lidar = adjoint(lidar_from_imu_);
       const Eigen::Matrix<double, 6, 6> to_right = right_perturbation_jacobian(imu_motion);
       const Matrix6d imu_information = to_lidar.transpose() * lidar_information * to_lidar;
-      if (!filter_.update_motion(imu_motion, to_right.transpose() * imu_information * to_right)) {
+      if (filter_.update_motion(imu_motion, to_right.transpose() * imu_information * to_right,
+                                kLidarGate)) {
+        refusals_in_a_row_ = 0;
+      } else {
         ++status_.lidar_rejections;
+        ++refusals_in_a_row_;
       }
     }
     filter_.mark_scan();
-  } else if (!filter_.initialized() && lidar_motion && interval_start_ &&
+    if (refusals_in_a_row_ >= kRefusalsBeforeRestart) {
+      filter_.reset();
+      refusals_in_a_row_ = 0;
+    }
+  } else if (!filter_.initialized() && lidar_motion && motions_in_a_row_ >= kStartAfterMotions &&
+             interval_start_ &&
              samples_cover(imu_samples_, std::max(stamp_ - kLevellingWindow, *interval_start_),
                            stamp_, imu_params_.max_gap_s)) {
     // With the LiDAR's velocity known: it levels the filter in a turn and starts its velocity.
     start_filter(*lidar_motion);
   }
+  motions_in_a_row_ = lidar_motion ? motions_in_a_row_ + 1 : 0;
   const double dt = interval_start_ ? stamp_ - *interval_start_ : 0.0;
   if (lidar_motion && dt > 0.0) {
     if (wheel_motion_) learn_wheel_scale(*lidar_motion, information);
@@ -315,6 +333,15 @@ void MotionSensors::update(const std::optional<Eigen::Isometry3d>& mapped_motion
     lidar_speed_ = base_motion.translation().x() / dt;
   } else {
     lidar_speed_.reset();
+  }
+  if (std::getenv("ALEGO_DEBUG_FILTER") && filter_.initialized()) {
+    const Eigen::Vector3d up = lidar_from_imu_.linear() * filter_.up_in_imu();
+    const Eigen::Vector3d v = filter_.state().rotation.transpose() * filter_.state().velocity;
+    std::fprintf(stderr, "FILT %.2f up %.4f %.4f %.4f ba %.4f %.4f %.4f bg %.5f %.5f %.5f v %.3f %.3f %.3f lid %d\n",
+                 stamp_, up.x(), up.y(), up.z(), filter_.state().accel_bias.x(),
+                 filter_.state().accel_bias.y(), filter_.state().accel_bias.z(),
+                 filter_.state().gyro_bias.x(), filter_.state().gyro_bias.y(),
+                 filter_.state().gyro_bias.z(), v.x(), v.y(), v.z(), lidar_motion.has_value());
   }
   status_.gyro_bias = filter_.state().gyro_bias;
   status_.accel_bias = filter_.state().accel_bias;

@@ -62,6 +62,17 @@ TEST(InertialFilter, StandingStillStaysPut) {
   EXPECT_NEAR(filter.up_in_imu().z(), 1.0, 1e-9);
 }
 
+TEST(InertialFilter, StartsLevelledByTheSpecificForce) {
+  // Upside down and tilted: up, in the IMU's frame, is where the accelerometer reads +g.
+  const Eigen::Vector3d up = Eigen::Vector3d(0.1, -0.05, -1.0).normalized();
+  InertialFilter filter(quiet_imu());
+  filter.initialize(0.0, 9.81 * up, Eigen::Vector3d::Zero(), 0.1);
+  EXPECT_LT((filter.up_in_imu() - up).norm(), 1e-12);
+  // ... and stays so at rest.
+  filter.propagate(1.0, Eigen::Vector3d::Zero(), 9.81 * up);
+  EXPECT_LT(filter.state().velocity.norm(), 1e-9);
+}
+
 TEST(InertialFilter, LidarMotionsTeachItTheGyroBias) {
   const PoseAt body = constant_turn(8.0, 0.2);
   std::vector<ImuSample> samples =

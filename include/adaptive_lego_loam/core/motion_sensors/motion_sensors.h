@@ -97,6 +97,8 @@ class MotionSensors {
   std::optional<double> interval_start_;  // the scan before the current one's
   double stamp_ = 0.0;
   std::optional<double> lidar_speed_;        // the base's forward speed the LiDAR measured last
+  int motions_in_a_row_ = 0;   // mapped motions (update()) since a scan went unmapped
+  int refusals_in_a_row_ = 0;  // LiDAR motions the filter's gate refused
   std::optional<WheelMotion> wheel_motion_;  // this scan's, for the scale
   MotionPrediction prediction_;
   MotionSensorsStatus status_;
