@@ -166,7 +166,7 @@ int run(Options& o) {
 
   const auto build_started = std::chrono::steady_clock::now();
   const SceneRequest request = make_request(o, config.sensor);
-  SequenceWriter writer(o.output, o.overwrite);
+  SequenceWriter writer(o.output, o.overwrite, sensor_options.range_noise_m);
   const GeneratedScene scene = generate_scene(request);
   LidarSimulator simulator(model, scene.world, scene.trajectory, o.seed);
   const double build_seconds =

@@ -41,6 +41,11 @@ inline bool is_ground_class(SemanticClass semantic) {
          semantic == SemanticClass::kTerrain;
 }
 
+// Things that move during a drive: they do not constrain the sensor's own motion.
+inline bool is_moving_class(SemanticClass semantic) {
+  return semantic == SemanticClass::kMovingCar || semantic == SemanticClass::kMovingPerson;
+}
+
 // SemanticKITTI's name of the class, e.g. "moving-car".
 std::string class_name(SemanticClass semantic);
 
