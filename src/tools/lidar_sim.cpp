@@ -1,5 +1,6 @@
 // Simulates LiDAR sequences with exact ground truth in the scenes the paper is about (urban,
-// highway, tunnel, vegetation, loop) and writes them as KITTI-style folders, optionally a bag.
+// highway, tunnel, vegetation, loop) and degenerate ones (a bare tunnel, an indoor corridor), and
+// writes them as KITTI-style folders, optionally a bag.
 
 #include <CLI/CLI.hpp>
 
@@ -44,7 +45,7 @@ struct Options {
   std::optional<double> beam_divergence;
   std::optional<std::string> motion_distortion, rough_road;
   std::optional<double> speed, leaf_jitter, foliage_density;
-  double sensor_height = 1.73;
+  std::optional<double> sensor_height;
   bool identical_houses = false;
   bool overwrite = false;
 };
@@ -213,6 +214,8 @@ int run(Options& o) {
   description.sensor_options = sensor_options;
   description.path_length_m = scene.path_length_m;
   description.drive_length_m = scene.drive_length_m;
+  description.speed_changes = scene.speed_changes;
+  description.tunnel_entry_m = scene.tunnel_entry_m;
   writer.finish(run_yaml(description));
 
   print_class_shares(class_counts, points);
@@ -234,8 +237,10 @@ int main(int argc, char** argv) {
       "labels) in a generated scene, written as a KITTI-style folder."};
   Options o;
   app.add_option("--scenario", o.scenario,
-                 "scene: urban, highway, tunnel, vegetation, loop, green_highway (the highway with "
-                 "planted verges, as KITTI 01) or busy_street (crowded, as KITTI 04)")
+                 "scene: urban, highway, tunnel (a road tunnel with its furniture, entered from "
+                 "open road), vegetation, loop, green_highway (the highway with planted verges, as "
+                 "KITTI 01), busy_street (crowded, as KITTI 04), bare_tunnel (smooth walls, "
+                 "straight) or corridor (indoors, a robot's sensor)")
       ->required()
       ->check(CLI::IsMember(scenario_names()));
   app.add_option("--sensor", o.sensor,
@@ -290,7 +295,7 @@ int main(int argc, char** argv) {
          "of the same size (default 1)")
       ->check(CLI::Range(0.05, 2.0));
   app.add_option("--sensor-height", o.sensor_height,
-                 "sensor height above the road, m (default 1.73)")
+                 "sensor height above the road or floor, m (default 1.73; corridor 0.6)")
       ->check(CLI::Range(0.2, 5.0));
   app.add_flag("--identical-houses", o.identical_houses,
                "urban or loop: the same house on every lot, no side streets, trees or bushes (a "

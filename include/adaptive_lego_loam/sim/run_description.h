@@ -2,7 +2,9 @@
 // Everything a simulated sequence was made from, for its scenario.yaml: with the seed, the same
 // settings give the same sequence byte for byte.
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/sim/lidar_model.h"
@@ -18,6 +20,8 @@ struct RunDescription {
   SensorParams sensor_params;
   SimSensorOptions sensor_options;
   double path_length_m = 0.0, drive_length_m = 0.0;
+  std::vector<SpeedChange> speed_changes;  // GeneratedScene's
+  std::optional<double> tunnel_entry_m;
 };
 
 std::string run_yaml(const RunDescription& run);
