@@ -4,6 +4,7 @@
 // portal's head wall; inside, the ledges, walls and vault of the tunnel scenario's cross-section
 // and, unless it is bare, the furniture of a real road tunnel and a gentle curve.
 
+#include <memory>
 #include <vector>
 
 #include "adaptive_lego_loam/sim/path.h"
