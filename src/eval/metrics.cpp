@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -162,7 +163,76 @@ OdometryEvaluation evaluate_odometry(const Poses& estimate, const Poses& ground_
   evaluation.rpe = relative_pose_error(estimate_used, truth_used);
   evaluation.kitti = kitti_segment_error(estimate_used, truth_used, options);
   evaluation.ate = absolute_trajectory_error(estimate_used, truth_used);
+  evaluation.drift = end_drift(estimate_used, truth_used);
   return evaluation;
+}
+
+EndDrift end_drift(const Poses& estimate, const Poses& ground_truth) {
+  check_same_length(estimate, ground_truth);
+  EndDrift drift;
+  drift.estimated_path_m = path_distances(estimate).back();
+  drift.ground_truth_path_m = path_distances(ground_truth).back();
+  if (drift.ground_truth_path_m > 0) {
+    drift.reach_ratio = drift.estimated_path_m / drift.ground_truth_path_m;
+  }
+  const Eigen::Vector2d end = estimate.back().translation().head<2>();
+  // The nearest point of the true path, horizontally; its first and last steps that move run on
+  // straight.
+  auto step_of = [&](std::size_t i) -> Eigen::Vector2d {
+    return (ground_truth[i + 1].translation() - ground_truth[i].translation()).head<2>();
+  };
+  std::vector<std::size_t> moving;
+  for (std::size_t i = 0; i + 1 < ground_truth.size(); ++i) {
+    if (step_of(i).norm() > 0) moving.push_back(i);
+  }
+  double arc = 0, best_distance = std::numeric_limits<double>::infinity(), best_arc = 0;
+  for (std::size_t i : moving) {
+    const Eigen::Vector2d a = ground_truth[i].translation().head<2>(), step = step_of(i);
+    const double length = step.norm();
+    double along = (end - a).dot(step) / length;
+    if (i != moving.front()) along = std::max(along, 0.0);
+    if (i != moving.back()) along = std::min(along, length);
+    const double distance = (end - a - along * step / length).norm();
+    if (distance < best_distance) {
+      best_distance = distance;
+      best_arc = arc + along;
+    }
+    arc += length;
+  }
+  if (arc > 0) {
+    drift.along_track_percent = 100.0 * (best_arc - arc) / arc;
+    drift.cross_track_percent = 100.0 * best_distance / arc;
+  }
+  return drift;
+}
+
+Poses constant_velocity_baseline(const Poses& ground_truth, std::size_t window_frames) {
+  if (ground_truth.empty()) throw std::invalid_argument("empty ground truth");
+  const std::size_t k = std::min(window_frames, ground_truth.size() - 1);
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  if (k > 0) {
+    // The step S with S^k = Q_0^-1 Q_k: a k-th of the rotation, and the translation that k such
+    // steps add up to.
+    const Eigen::Isometry3d motion = ground_truth.front().inverse() * ground_truth[k];
+    const Eigen::AngleAxisd rotation(motion.linear());
+    step.linear() = Eigen::AngleAxisd(rotation.angle() / static_cast<double>(k), rotation.axis())
+                        .toRotationMatrix();
+    Eigen::Matrix3d sum = Eigen::Matrix3d::Zero(), power = Eigen::Matrix3d::Identity();
+    for (std::size_t j = 0; j < k; ++j, power = power * step.linear())
+      sum += power;
+    step.translation() = sum.inverse() * motion.translation();
+  }
+  Poses baseline{ground_truth.front()};
+  while (baseline.size() < ground_truth.size())
+    baseline.push_back(baseline.back() * step);
+  return baseline;
+}
+
+std::size_t steps_within(const std::vector<double>& times, double seconds) {
+  std::size_t k = 0;
+  while (k + 1 < times.size() && times[k + 1] - times.front() <= seconds + 1e-9)
+    ++k;
+  return k;
 }
 
 }  // namespace adaptive_lego_loam

@@ -14,6 +14,8 @@ std::string class_name(SemanticClass semantic) {
       return "road";
     case SemanticClass::kSidewalk:
       return "sidewalk";
+    case SemanticClass::kOtherGround:
+      return "other-ground";
     case SemanticClass::kBuilding:
       return "building";
     case SemanticClass::kFence:
@@ -30,6 +32,8 @@ std::string class_name(SemanticClass semantic) {
       return "pole";
     case SemanticClass::kTrafficSign:
       return "traffic-sign";
+    case SemanticClass::kOtherObject:
+      return "other-object";
     case SemanticClass::kMovingCar:
       return "moving-car";
     case SemanticClass::kMovingPerson:

@@ -155,12 +155,22 @@ bool Path::nearest(const Eigen::Vector2d& xy, double max_distance, Nearest& out)
   return found;
 }
 
-std::vector<Eigen::Vector3d> trace_pieces(const std::vector<PathPiece>& pieces) {
+std::vector<PathPiece> eased_curve(double curvature, double arc, double transition, int steps) {
+  std::vector<PathPiece> pieces;
+  for (int k = 0; k < steps; ++k)
+    pieces.push_back({transition / steps, curvature * (k + 0.5) / steps});
+  if (arc > 0.0) pieces.push_back({arc, curvature});
+  for (int k = steps - 1; k >= 0; --k)
+    pieces.push_back({transition / steps, curvature * (k + 0.5) / steps});
+  return pieces;
+}
+
+std::vector<Eigen::Vector3d> trace_pieces(const std::vector<PathPiece>& pieces, double sample) {
   std::vector<Eigen::Vector3d> points{Eigen::Vector3d::Zero()};
   Eigen::Vector2d position = Eigen::Vector2d::Zero();
   double heading = 0.0;
   for (const PathPiece& piece : pieces) {
-    const int steps = std::max(1, static_cast<int>(std::ceil(piece.length)));
+    const int steps = std::max(1, static_cast<int>(std::ceil(piece.length / sample)));
     const double step = piece.length / steps;
     for (int k = 0; k < steps; ++k) {
       const double turn = piece.curvature * step;

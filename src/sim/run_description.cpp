@@ -41,6 +41,14 @@ void emit_scenario(YAML::Emitter& out, const ScenarioParams& p) {
   out << YAML::Key << "junctions_per_km" << YAML::Value << p.junctions_per_km;
   out << YAML::Key << "guard_rails" << YAML::Value << p.guard_rails;
   out << YAML::Key << "tunnel" << YAML::Value << p.tunnel;
+  // Keys of the scenarios that came later, only where they mean something: the other scenarios'
+  // files stay as they were.
+  if (p.kind == ScenarioKind::kTunnel) {
+    out << YAML::Key << "tunnel_furniture" << YAML::Value << p.tunnel_furniture;
+    out << YAML::Key << "tunnel_curve" << YAML::Value << p.tunnel_curve;
+  }
+  if (p.slow_speed_mps > 0.0)
+    out << YAML::Key << "slow_speed_mps" << YAML::Value << p.slow_speed_mps;
   out << YAML::Key << "leaf_jitter_m" << YAML::Value << p.leaf_jitter_m;
   out << YAML::Key << "foliage_density" << YAML::Value << p.foliage_density;
   out << YAML::Key << "wind_states" << YAML::Value << p.wind_states;
@@ -67,7 +75,7 @@ void emit_sensor(YAML::Emitter& out, const RunDescription& run) {
   out << YAML::Key << "min_range_m" << YAML::Value << s.min_range;
   out << YAML::Key << "max_range_m" << YAML::Value << s.max_range;
   out << YAML::Key << "scan_period_s" << YAML::Value << s.scan_period;
-  out << YAML::Key << "height_m" << YAML::Value << run.request.sensor_height;
+  out << YAML::Key << "height_m" << YAML::Value << run.request.height();
   out << YAML::Key << "range_noise_m" << YAML::Value << o.range_noise_m;
   out << YAML::Key << "full_return_incidence_deg" << YAML::Value << o.full_return_incidence_deg;
   out << YAML::Key << "no_return_incidence_deg" << YAML::Value << o.no_return_incidence_deg;
@@ -160,6 +168,20 @@ std::string run_yaml(const RunDescription& run) {
   out << YAML::Key << "drive_length_m" << YAML::Value << run.drive_length_m;
   if (run.trajectory_cutoff_hz > 0.0)
     out << YAML::Key << "trajectory_cutoff_hz" << YAML::Value << run.trajectory_cutoff_hz;
+  if (run.tunnel_entry_m)
+    out << YAML::Key << "tunnel_entry_m" << YAML::Value << *run.tunnel_entry_m;
+  if (!run.speed_changes.empty()) {
+    out << YAML::Key << "speed_changes" << YAML::Value << YAML::BeginSeq;
+    for (const SpeedChange& change : run.speed_changes) {
+      out << YAML::Flow << YAML::BeginMap;
+      out << YAML::Key << "start_time_s" << YAML::Value << change.start_time_s;
+      out << YAML::Key << "delta_mps" << YAML::Value << change.delta_mps;
+      out << YAML::Key << "acceleration_mps2" << YAML::Value << change.acceleration_mps2;
+      out << YAML::Key << "ramp_s" << YAML::Value << change.ramp_s;
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
   emit_sensor(out, run);
   emit_scenario(out, run.request.scenario);
   if (run.imu) emit_imu(out, *run.imu);

@@ -16,6 +16,8 @@ std::string kind_name(ScenarioKind kind) {
       return "vegetation";
     case ScenarioKind::kLoop:
       return "loop";
+    case ScenarioKind::kCorridor:
+      return "corridor";
   }
   return "unknown";
 }
@@ -54,24 +56,31 @@ ScenarioParams default_scenario(ScenarioKind kind) {
       p.guard_rails = true;
       break;
     case ScenarioKind::kTunnel:
-      // Two lanes between smooth walls, a raised ledge on each side.
+      // A road tunnel of two lanes, a raised ledge on each side, entered from open road at
+      // speed; inside, the drive brakes to 5 m/s and accelerates back. The approach has guard
+      // rails, shrubs and trees in the fields and a cutting that deepens toward the portal.
       p.road_half_width = 4.5;
       p.sidewalk_width = 1.0;
       p.curb_height = 0.25;
       p.ego_lateral = -2.25;
       p.cruise_speed_mps = 15.0;
+      p.speed_variation = 0.0;
+      p.slow_speed_mps = 5.0;
       p.hill_amplitude_m = 0.5;
       p.hill_wavelength_m = 800.0;
       p.buildings = false;
-      p.trees_per_100m = 0.0;
-      p.bushes_per_100m = 0.0;
+      p.trees_per_100m = 3.0;
+      p.bushes_per_100m = 10.0;
       p.poles_per_100m = 0.0;
       p.parked_car_share = 0.0;
       p.moving_cars_per_km_lane = 3.0;
       p.walkers_per_100m = 0.0;
       p.standing_people_per_100m = 0.0;
       p.fences_share = 0.0;
+      p.guard_rails = true;
       p.tunnel = true;
+      p.tunnel_furniture = true;
+      p.tunnel_curve = true;
       break;
     case ScenarioKind::kVegetation:
       // A narrow, winding, hilly road through dense bushes and trees; a few walls; rough.
@@ -94,6 +103,28 @@ ScenarioParams default_scenario(ScenarioKind kind) {
       p.walls_per_100m = 0.4;
       p.fences_share = 0.0;
       p.rough_road = true;
+      break;
+    case ScenarioKind::kCorridor:
+      // An office building's corridors, 2 m wide (1.8-2.4 m is usual), doors every 10 m, a turn
+      // into a second corridor; a robot's VLP-16 0.6 m above the floor at 1.5 m/s with stops.
+      p.road_half_width = 1.0;
+      p.sidewalk_width = 0.0;
+      p.ego_lateral = 0.0;
+      p.cruise_speed_mps = 1.5;
+      p.speed_variation = 0.0;
+      p.sensor_height_m = 0.6;
+      p.hill_amplitude_m = 0.0;
+      p.relief_amplitude_m = 0.0;
+      p.buildings = false;
+      p.trees_per_100m = 0.0;
+      p.bushes_per_100m = 0.0;
+      p.poles_per_100m = 0.0;
+      p.parked_car_share = 0.0;
+      p.moving_cars_per_km_lane = 0.0;
+      p.walkers_per_100m = 0.0;
+      p.standing_people_per_100m = 0.0;
+      p.fences_share = 0.0;
+      p.junctions_per_km = 0.0;
       break;
   }
   return p;
@@ -136,21 +167,34 @@ ScenarioParams busy_street() {
   return p;
 }
 
+// The tunnel without its furniture and curve: smooth walls and vault along a straight line, where
+// nothing constrains the motion along the road (the limit case).
+ScenarioParams bare_tunnel() {
+  ScenarioParams p = default_scenario(ScenarioKind::kTunnel);
+  p.name = "bare_tunnel";
+  p.tunnel_furniture = false;
+  p.tunnel_curve = false;
+  return p;
+}
+
 }  // namespace
 
 const std::vector<std::string>& scenario_names() {
-  static const std::vector<std::string> names = {
-      "urban", "highway", "tunnel", "vegetation", "loop", "green_highway", "busy_street"};
+  static const std::vector<std::string> names = {"urban",       "highway",     "tunnel",
+                                                 "vegetation",  "loop",        "green_highway",
+                                                 "busy_street", "bare_tunnel", "corridor"};
   return names;
 }
 
 ScenarioParams named_scenario(const std::string& name) {
-  for (ScenarioKind kind : {ScenarioKind::kUrban, ScenarioKind::kHighway, ScenarioKind::kTunnel,
-                            ScenarioKind::kVegetation, ScenarioKind::kLoop}) {
+  for (ScenarioKind kind :
+       {ScenarioKind::kUrban, ScenarioKind::kHighway, ScenarioKind::kTunnel,
+        ScenarioKind::kVegetation, ScenarioKind::kLoop, ScenarioKind::kCorridor}) {
     if (name == kind_name(kind)) return default_scenario(kind);
   }
   if (name == "green_highway") return green_highway();
   if (name == "busy_street") return busy_street();
+  if (name == "bare_tunnel") return bare_tunnel();
   std::string allowed;
   for (const std::string& known : scenario_names())
     allowed += (allowed.empty() ? "" : ", ") + known;

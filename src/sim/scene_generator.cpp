@@ -10,10 +10,12 @@
 #include "adaptive_lego_loam/sim/plants.h"
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/terrain.h"
+#include "scene/corridor.h"
 #include "scene/layouts.h"
 #include "scene/paths.h"
 #include "scene/placement.h"
 #include "scene/traffic.h"
+#include "scene/tunnel.h"
 
 namespace adaptive_lego_loam::sim {
 namespace {
@@ -30,6 +32,7 @@ enum Stream : uint64_t {
   kSpeedStream,
   kRoadsideStream,
   kJunctionStream,
+  kTunnelStream,
 };
 
 constexpr int kTreeShapes = 4, kBushShapes = 4;
@@ -94,7 +97,7 @@ double drive_recorded(const SceneRequest& request, const Shake& shake, Generated
   const std::vector<double> times(request.trajectory_times.begin(),
                                   request.trajectory_times.begin() + count);
   const double lead = lead_length(request);
-  scene.path = recorded_path(poses, request.sensor_height, request.scenario.ego_lateral, lead);
+  scene.path = recorded_path(poses, request.height(), request.scenario.ego_lateral, lead);
   scene.trajectory = std::make_shared<SampledTrajectory>(times, poses, shake);
   for (std::size_t i = 1; i < poses.size(); ++i)
     scene.drive_length_m += (poses[i].translation() - poses[i - 1].translation()).norm();
@@ -103,11 +106,11 @@ double drive_recorded(const SceneRequest& request, const Shake& shake, Generated
 
 // The same along a synthetic path for the scenario.
 double drive_synthetic(const SceneRequest& request, const HeightField& hills, const Shake& shake,
-                       GeneratedScene& scene) {
+                       const std::optional<TunnelPlan>& tunnel, GeneratedScene& scene) {
   const ScenarioParams& p = request.scenario;
   Rng speed_rng(derive_seed(request.scene(), kSpeedStream));
-  SpeedProfile speed{p.cruise_speed_mps, p.speed_variation, 20.0,
-                     speed_rng.uniform(0.0, 2.0 * M_PI)};
+  SpeedProfile speed{
+      p.cruise_speed_mps, p.speed_variation, 20.0, speed_rng.uniform(0.0, 2.0 * M_PI), {}};
   const double sweep_end = request.frames * request.frame_period;
   const double lead = lead_length(request);
   double ego_start_s = lead;
@@ -120,14 +123,20 @@ double drive_synthetic(const SceneRequest& request, const HeightField& hills, co
     // requested frames end where they began.
     if (lap > kMinLoopLength) speed.cruise_mps *= scene.path->length() / lap;
   } else {
+    if (tunnel) {
+      Rng tunnel_rng(derive_seed(request.scene(), kTunnelStream, 1));
+      speed.changes = tunnel_speed_changes(p, speed, tunnel->portal_s - ego_start_s, tunnel_rng);
+    }
     Rng path_rng(derive_seed(request.scene(), kPathStream));
     const double length = 2.0 * lead + speed.distance(sweep_end + request.frame_period);
-    scene.path = synthetic_path(open_pieces(p.kind, length, lead, path_rng), false, hills);
+    scene.path = synthetic_path(
+        tunnel ? tunnel_pieces(*tunnel, length) : open_pieces(p.kind, length, lead, path_rng),
+        false, hills);
   }
-  scene.trajectory =
-      std::make_shared<PathTrajectory>(scene.path, speed, ego_start_s, p.ego_lateral,
-                                       request.sensor_height, shake, request.frame_period);
+  scene.trajectory = std::make_shared<PathTrajectory>(
+      scene.path, speed, ego_start_s, p.ego_lateral, request.height(), shake, request.frame_period);
   scene.drive_length_m = speed.distance(sweep_end);
+  scene.speed_changes = speed.changes;
   return ego_start_s;
 }
 
@@ -192,9 +201,11 @@ struct RoadPlan {
   std::vector<SideStreet> side_streets;
 };
 
-RoadPlan plan_road(const SceneRequest& request, const Path& path, TerrainModel& terrain) {
+RoadPlan plan_road(const SceneRequest& request, const Path& path,
+                   const std::optional<TunnelPlan>& tunnel, TerrainModel& terrain) {
   const ScenarioParams& p = request.scenario;
   RoadPlan plan;
+  if (tunnel) terrain.add_berms(tunnel_cutting(p, *tunnel, path.length()));
   if (p.kind == ScenarioKind::kHighway) {
     Rng rng(derive_seed(request.scene(), kRoadsideStream));
     plan.highway = plan_highway(request.scenario, path, rng);
@@ -211,13 +222,20 @@ RoadPlan plan_road(const SceneRequest& request, const Path& path, TerrainModel& 
 // Road, terrain, objects and moving things along the scene's path.
 std::shared_ptr<World> populate(const SceneRequest& request, const GeneratedScene& scene,
                                 const TerrainModel& terrain, const RoadPlan& plan,
-                                double ego_start_s, bool recorded) {
+                                const std::optional<TunnelPlan>& tunnel, double ego_start_s,
+                                bool recorded) {
   const ScenarioParams& p = request.scenario;
   const Path& path = *scene.path;
   auto world = std::make_shared<World>();
   world->seed = request.seed;
   world->path = scene.path;
-  build_road(*world, path, road_cross_section(p), plan.side_streets);
+  if (tunnel) {
+    // Open road up to the portal, the tunnel's ledges from there on; terrain along the approach.
+    build_road(*world, path, tunnel_road_section(p), {}, tunnel->portal_s);
+    build_terrain(*world, *tunnel_approach(path, *tunnel), terrain, request.reach);
+  } else {
+    build_road(*world, path, road_cross_section(p), plan.side_streets);
+  }
   for (const SideStreet& street : plan.side_streets)
     build_road(*world, *street.path, side_street_cross_section(street), {}, street.corner);
   if (!p.tunnel) build_terrain(*world, path, terrain, request.reach);
@@ -239,10 +257,14 @@ std::shared_ptr<World> populate(const SceneRequest& request, const GeneratedScen
       layout_vegetation(layout);
       break;
     case ScenarioKind::kTunnel:
-      break;  // the walls are part of the road's cross-section
+      layout_tunnel(layout, *tunnel);
+      break;
+    case ScenarioKind::kCorridor:
+      break;  // generate_corridor builds it
   }
   Rng mover_rng(derive_seed(request.seed, kMoverStream));
-  add_moving_cars(*world, path, p, ego_start_s, !recorded && !path.closed(), mover_rng);
+  add_moving_cars(*world, path, p, ego_start_s, !recorded && !path.closed(),
+                  !scene.speed_changes.empty(), mover_rng);
   add_walkers(*world, path, p, mover_rng);
   return world;
 }
@@ -253,20 +275,27 @@ GeneratedScene generate_scene(const SceneRequest& request) {
   check_request(request);
   const ScenarioParams& p = request.scenario;
   const bool recorded = !request.trajectory_poses.empty();
+  const Shake shake =
+      p.rough_road ? Shake(p.shake, derive_seed(request.seed, kShakeStream)) : Shake();
+  if (p.kind == ScenarioKind::kCorridor) return generate_corridor(request, shake);
   Rng hill_rng(derive_seed(request.scene(), kHillStream));
   const HeightField hills =
       recorded ? HeightField() : HeightField(hill_rng, p.hill_amplitude_m, p.hill_wavelength_m, 3);
   const HeightField relief(hill_rng, p.relief_amplitude_m, p.relief_wavelength_m, 4);
-  const Shake shake =
-      p.rough_road ? Shake(p.shake, derive_seed(request.seed, kShakeStream)) : Shake();
+  std::optional<TunnelPlan> tunnel;
+  if (p.kind == ScenarioKind::kTunnel) {
+    Rng tunnel_rng(derive_seed(request.scene(), kTunnelStream));
+    tunnel = plan_tunnel(p, lead_length(request), tunnel_rng);
+  }
 
   GeneratedScene scene;
   const double ego_start_s = recorded ? drive_recorded(request, shake, scene)
-                                      : drive_synthetic(request, hills, shake, scene);
+                                      : drive_synthetic(request, hills, shake, tunnel, scene);
   scene.path_length_m = scene.path->length();
+  if (tunnel) scene.tunnel_entry_m = tunnel->portal_s - ego_start_s;
   TerrainModel terrain(*scene.path, p, hills, relief, !recorded, request.reach);
-  const RoadPlan plan = plan_road(request, *scene.path, terrain);
-  scene.world = populate(request, scene, terrain, plan, ego_start_s, recorded);
+  const RoadPlan plan = plan_road(request, *scene.path, tunnel, terrain);
+  scene.world = populate(request, scene, terrain, plan, tunnel, ego_start_s, recorded);
   scene.motion = std::make_shared<const SmoothTrajectory>(scene.trajectory, request.frames,
                                                           recorded ? kRecordedCutoffHz : 0.0);
   scene.trajectory = scene.motion;

@@ -7,13 +7,15 @@
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/motion_sensor_files.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "adaptive_lego_loam/sim/observability.h"
 
 namespace adaptive_lego_loam::sim {
 namespace fs = std::filesystem;
 namespace {
 
-const char* const kSequenceFiles[] = {"poses.txt", "times.txt",      "calib.txt",   "scenario.yaml",
-                                      "imu.csv",   "wheel_odom.csv", "sensors.yaml"};
+const char* const kSequenceFiles[] = {"poses.txt",         "times.txt", "calib.txt",
+                                      "observability.csv", "imu.csv",   "wheel_odom.csv",
+                                      "sensors.yaml",      "scenario.yaml"};
 
 std::string frame_name(int index, const char* extension) {
   char name[32];
@@ -29,7 +31,10 @@ void write_text(const fs::path& path, const std::string& text) {
 
 }  // namespace
 
-SequenceWriter::SequenceWriter(std::string dir, bool overwrite) : dir_(std::move(dir)) {
+SequenceWriter::SequenceWriter(std::string dir, bool overwrite, double range_noise_m)
+    : dir_(std::move(dir)),
+      range_noise_m_(range_noise_m),
+      observability_(observability_header(range_noise_m)) {
   const fs::path root(dir_);
   std::error_code error;
   if (fs::exists(root / "velodyne", error)) {
@@ -58,6 +63,8 @@ void SequenceWriter::write_frame(int index, const SimFrame& frame) {
   if (relative_poses_.empty()) first_pose_ = frame.sensor_pose;
   relative_poses_.push_back(first_pose_.inverse() * frame.sensor_pose);
   times_.push_back(frame.time);
+  observability_ +=
+      observability_line(index, scan_information(frame, observability_sigma(range_noise_m_)));
 }
 
 void SequenceWriter::finish(const std::string& scenario_yaml) {
@@ -77,6 +84,7 @@ void SequenceWriter::finish(const std::string& scenario_yaml) {
   for (const char* key : {"P0", "P1", "P2", "P3", "Tr"})
     calib += std::string(key) + ": " + identity + "\n";
   write_text(root / "calib.txt", calib);
+  write_text(root / "observability.csv", observability_);
   write_text(root / "scenario.yaml", scenario_yaml);
 }
 

@@ -57,13 +57,13 @@ void LidarSimulator::make_rays(int first_column, int width) {
   }
 }
 
-std::optional<Hit> LidarSimulator::strongest_echo(const Hit* hits, int count,
-                                                  std::size_t stride) const {
-  struct Echo {
+std::optional<LidarSimulator::Echo> LidarSimulator::strongest_echo(const Hit* hits, int count,
+                                                                   std::size_t stride) const {
+  struct Return {
     float range, energy;
-    const Hit* hit;
+    int ray;
   };
-  Echo echoes[5];
+  Return echoes[5];
   int found = 0;
   for (int k = 0; k < count; ++k) {
     const Hit& hit = hits[k * stride];
@@ -72,33 +72,34 @@ std::optional<Hit> LidarSimulator::strongest_echo(const Hit* hits, int count,
       continue;
     // Received power of a surface filling its share of the footprint: reflectivity over r^2.
     const float energy = std::max(hit.reflectivity, 0.01f) / (hit.distance * hit.distance);
-    echoes[found++] = {hit.distance, energy, &hit};
+    echoes[found++] = {hit.distance, energy, k};
   }
   if (found == 0) return std::nullopt;
-  if (count == 1) return *echoes[0].hit;
-  std::sort(echoes, echoes + found, [](const Echo& a, const Echo& b) { return a.range < b.range; });
+  if (count == 1) return Echo{hits[0], 0};
+  std::sort(echoes, echoes + found,
+            [](const Return& a, const Return& b) { return a.range < b.range; });
   const float merge = static_cast<float>(model_.options().echo_merge_distance_m);
-  Hit best;
+  Echo best;
   float best_energy = -1.0f;
   for (int first = 0; first < found;) {
     // Echoes within the merge distance of the group's nearest make one: a mixed pixel.
     int last = first;
     float energy = 0.0f, weighted_range = 0.0f;
-    const Hit* strongest = echoes[first].hit;
+    int strongest = echoes[first].ray;
     float strongest_energy = -1.0f;
     while (last < found && echoes[last].range - echoes[first].range <= merge) {
       energy += echoes[last].energy;
       weighted_range += echoes[last].energy * echoes[last].range;
       if (echoes[last].energy > strongest_energy) {
         strongest_energy = echoes[last].energy;
-        strongest = echoes[last].hit;
+        strongest = echoes[last].ray;
       }
       ++last;
     }
     if (energy > best_energy) {
       best_energy = energy;
-      best = *strongest;
-      best.distance = weighted_range / energy;
+      best = {hits[strongest * stride], strongest};
+      best.hit.distance = weighted_range / energy;
     }
     first = last;
   }
@@ -133,6 +134,10 @@ void LidarSimulator::render(int frame, SimFrame& out) {
   out.scan.points.clear();
   out.labels.clear();
   out.normals.clear();
+  out.exact_points.clear();
+  out.exact_normals.clear();
+  const Eigen::Isometry3d world_to_scan = out.sensor_pose.inverse();
+  const Eigen::Matrix3f world_to_scan_rotation = world_to_scan.linear().cast<float>();
   Rng rng(derive_seed(seed_, kNoiseStream, static_cast<uint64_t>(frame)));
   const int beams = model_.beams(), columns = model_.columns();
   // A block of columns at a time, so that its rays and hits stay in cache between casting and
@@ -155,10 +160,16 @@ void LidarSimulator::render(int frame, SimFrame& out) {
       for (int beam = 0; beam < beams; ++beam) {
         // The beam's centre ray; its footprint rays follow `width` apart.
         const std::size_t index = static_cast<std::size_t>(beam) * footprint * width + c;
-        const std::optional<Hit> echo = strongest_echo(&hits_[index], footprint, width);
-        if (!echo || !add_return(*echo, rays_[index].direction, beam, column, rng, out)) continue;
+        const std::optional<Echo> echo = strongest_echo(&hits_[index], footprint, width);
+        if (!echo || !add_return(echo->hit, rays_[index].direction, beam, column, rng, out))
+          continue;
         out.scan.points.back().time = time;
-        out.normals.push_back(to_sensor * echo->normal);
+        out.normals.push_back(to_sensor * echo->hit.normal);
+        const std::size_t surface = index + static_cast<std::size_t>(echo->footprint_ray) * width;
+        const Ray& ray = rays_[surface];
+        const Eigen::Vector3f hit = ray.origin + hits_[surface].distance * ray.direction;
+        out.exact_points.push_back((world_to_scan * hit.cast<double>()).cast<float>());
+        out.exact_normals.push_back(world_to_scan_rotation * hits_[surface].normal);
       }
     }
   }

@@ -59,6 +59,7 @@ std::vector<CrossSectionPiece> road_cross_section(const ScenarioParams& s) {
       marking(0.0, 6.0, 18.0);
       break;
     case ScenarioKind::kVegetation:
+    case ScenarioKind::kCorridor:
       break;
   }
   if (s.sidewalk_width > 0.0) {
@@ -132,6 +133,7 @@ TerrainModel::TerrainModel(const Path& path, const ScenarioParams& s, HeightFiel
       blend_end_ = w + 40.0;
       break;
     case ScenarioKind::kVegetation:
+    case ScenarioKind::kCorridor:
       profile_ = {{w - 0.6, kCoveredDepth}, {w + 0.2, -0.04}, {w + 1.5, -0.15}};
       covered_until_ = w - 0.6;
       blend_start_ = w + 1.5;

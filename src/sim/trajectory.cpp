@@ -74,12 +74,6 @@ Eigen::Isometry3d Shake::at(double time) const {
   return offset;
 }
 
-double SpeedProfile::distance(double time) const {
-  const double omega = 2.0 * M_PI / period_s;
-  return cruise_mps *
-         (time - variation / omega * (std::cos(omega * time + phase) - std::cos(phase)));
-}
-
 PathTrajectory::PathTrajectory(std::shared_ptr<const Path> path, const SpeedProfile& speed,
                                double start_s, double lateral_offset, double sensor_height,
                                const Shake& shake, double frame_period)

@@ -1,5 +1,6 @@
 // Compares an estimated trajectory with ground truth (both KITTI pose files) and prints the KITTI
-// segment errors, the RPE and the ATE of docs/METHOD.md; --json writes the same numbers.
+// segment errors, the RPE, the ATE and the drift at the end of docs/METHOD.md, optionally beside a
+// dead-reckoning baseline's drift; --json writes the same numbers.
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -21,6 +22,36 @@ namespace {
 
 json optional_number(const std::optional<double>& value) {
   return value ? json(*value) : json(nullptr);
+}
+
+// What --baseline asked for: a dead-reckoning trajectory whose drift is printed beside the
+// estimate's.
+struct Baseline {
+  std::string name;
+  std::vector<Eigen::Isometry3d> poses;
+  EndDrift drift;
+};
+
+// The baselines --baseline knows; an unknown one is a usage error naming those it knows.
+constexpr const char* kConstantVelocity = "constant-velocity";
+
+std::optional<std::string> check_baseline(const std::vector<std::string>& arguments) {
+  if (arguments.empty()) return std::nullopt;
+  if (arguments[0] != kConstantVelocity) {
+    return "--baseline: unknown baseline '" + arguments[0] + "' (expected " + kConstantVelocity +
+           ")";
+  }
+  if (arguments.size() > 1)
+    return std::string("--baseline ") + kConstantVelocity + " takes no file";
+  return std::nullopt;
+}
+
+json drift_json(const EndDrift& drift) {
+  return {{"reach_ratio", optional_number(drift.reach_ratio)},
+          {"along_track_percent", optional_number(drift.along_track_percent)},
+          {"cross_track_percent", optional_number(drift.cross_track_percent)},
+          {"estimated_path_m", drift.estimated_path_m},
+          {"ground_truth_path_m", drift.ground_truth_path_m}};
 }
 
 json to_json(const OdometryEvaluation& evaluation) {
@@ -50,7 +81,8 @@ json to_json(const OdometryEvaluation& evaluation) {
            {{"translation_rmse_m", optional_number(evaluation.rpe.translation_rmse_m)},
             {"rotation_rmse_deg", optional_number(evaluation.rpe.rotation_rmse_deg)},
             {"pairs", evaluation.rpe.translation_m.size()}}},
-          {"ate", {{"rmse_m", evaluation.ate.rmse_m}, {"alignment_3x4_row_major", alignment}}}};
+          {"ate", {{"rmse_m", evaluation.ate.rmse_m}, {"alignment_3x4_row_major", alignment}}},
+          {"drift", drift_json(evaluation.drift)}};
 }
 
 void print_kitti(const KittiSegmentError& kitti) {
@@ -85,6 +117,29 @@ void print(const OdometryEvaluation& evaluation) {
   std::printf("ATE RMSE           %.6f m\n", evaluation.ate.rmse_m);
 }
 
+std::string cell(const std::optional<double>& value, const char* format) {
+  if (!value) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof(text), format, *value);
+  return text;
+}
+
+// The drift at the end, the baseline's beside the estimate's.
+void print_drift(const EndDrift& drift, const std::optional<Baseline>& baseline) {
+  std::printf("drift at the end    %12s %18s\n", "estimate",
+              baseline ? baseline->name.c_str() : "");
+  auto row = [&](const char* label, auto field, const char* format) {
+    std::printf("  %-17s %12s %18s\n", label, cell(field(drift), format).c_str(),
+                baseline ? cell(field(baseline->drift), format).c_str() : "");
+  };
+  row(
+      "reach ratio", [](const EndDrift& d) { return d.reach_ratio; }, "%.4f");
+  row(
+      "along-track %", [](const EndDrift& d) { return d.along_track_percent; }, "%+.3f");
+  row(
+      "cross-track %", [](const EndDrift& d) { return d.cross_track_percent; }, "%.3f");
+}
+
 void write_json(const std::string& path, const json& document) {
   std::ofstream file(path, std::ios::trunc);
   if (!file) throw IoError(path + ": cannot open for writing");
@@ -101,14 +156,29 @@ int main(int argc, char** argv) {
       "KITTI segment errors t_err (%) and r_err (deg/100 m), RPE RMSE (m per frame) and ATE "
       "RMSE (m, after a rigid alignment). A shorter estimate (interrupted run) is compared over "
       "its frames."};
-  std::string gt_path, estimate_path, calib_path, json_path;
+  std::string gt_path, estimate_path, calib_path, json_path, times_path;
+  std::vector<std::string> baseline_arguments;
   app.add_option("--gt", gt_path, "ground-truth poses (KITTI format)")->required();
   app.add_option("--est", estimate_path, "estimated poses (KITTI format, lidar frame)")->required();
   app.add_option("--calib", calib_path,
                  "KITTI calib.txt: its Tr converts camera ground truth to the lidar frame");
   app.add_option("--json", json_path, "also write the numbers to this JSON file");
+  app.add_option("--baseline", baseline_arguments,
+                 "also the drift of a dead-reckoning baseline: constant-velocity (the ground "
+                 "truth's mean velocity over its first second, in the sensor frame, kept for the "
+                 "whole drive)")
+      ->expected(1, 2);
+  app.add_option("--times", times_path,
+                 "scan times (KITTI times.txt) for the baseline's first second (default: 10 "
+                 "scans a second)");
   if (const auto status = tools::parse_command_line(app, argc, argv, "evaluate_odometry")) {
     return *status;
+  }
+  if (const auto error = check_baseline(baseline_arguments)) {
+    return tools::usage_error("evaluate_odometry", *error);
+  }
+  if (!times_path.empty() && baseline_arguments.empty()) {
+    return tools::usage_error("evaluate_odometry", "--times applies to --baseline only");
   }
   return tools::run_job("evaluate_odometry", [&] {
     std::vector<Eigen::Isometry3d> ground_truth = read_kitti_poses(gt_path);
@@ -123,8 +193,28 @@ int main(int argc, char** argv) {
                    "comparing the first %zu\n",
                    estimate.size(), ground_truth.size(), evaluation.frames_used);
     }
-    if (!json_path.empty()) write_json(json_path, to_json(evaluation));
+    std::optional<Baseline> baseline;
+    std::size_t window = 10;  // 10 scans a second
+    if (!baseline_arguments.empty()) {
+      if (!times_path.empty()) window = steps_within(read_kitti_times(times_path), 1.0);
+      const std::vector<Eigen::Isometry3d> truth_used(
+          ground_truth.begin(),
+          ground_truth.begin() + static_cast<std::ptrdiff_t>(evaluation.frames_used));
+      baseline =
+          Baseline{baseline_arguments[0], constant_velocity_baseline(truth_used, window), {}};
+      baseline->drift = end_drift(baseline->poses, truth_used);
+    }
+    if (!json_path.empty()) {
+      json document = to_json(evaluation);
+      if (baseline) {
+        document["baseline"] = {{"name", baseline->name},
+                                {"first_second_steps", window},
+                                {"drift", drift_json(baseline->drift)}};
+      }
+      write_json(json_path, document);
+    }
     print(evaluation);
+    print_drift(evaluation.drift, baseline);
     return tools::kExitOk;
   });
 }

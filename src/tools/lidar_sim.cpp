@@ -1,5 +1,6 @@
 // Simulates LiDAR sequences with exact ground truth in the scenes the paper is about (urban,
-// highway, tunnel, vegetation, loop) and writes them as KITTI-style folders, optionally a bag.
+// highway, tunnel, vegetation, loop) and degenerate ones (a bare tunnel, an indoor corridor), and
+// writes them as KITTI-style folders, optionally a bag.
 
 #include <CLI/CLI.hpp>
 
@@ -55,7 +56,7 @@ struct Options {
   std::optional<double> beam_divergence;
   std::optional<std::string> motion_distortion, rough_road;
   std::optional<double> speed, leaf_jitter, foliage_density;
-  double sensor_height = 1.73;
+  std::optional<double> sensor_height;
   bool identical_houses = false;
   bool overwrite = false;
   // Motion sensors.
@@ -157,7 +158,7 @@ struct MotionSensorData {
 };
 
 MotionSensorData simulate_motion_sensors(const Options& o, const GeneratedScene& scene,
-                                         double scan_period) {
+                                         double scan_period, double sensor_height) {
   MotionSensorData data;
   const double from = scene.motion->frame_time(0) - scan_period;
   const double to = scene.motion->frame_time(o.frames - 1);
@@ -183,7 +184,7 @@ MotionSensorData simulate_motion_sensors(const Options& o, const GeneratedScene&
   if (o.wheel_odometry) {
     WheelOdometryOptions options;
     options.rate_hz = o.odom_rate;
-    options.mount_xyz_m[2] = -o.sensor_height;
+    options.mount_xyz_m[2] = -sensor_height;
     options.scale_error = error_on(o, "wheel-scale");
     options.noise = error_on(o, "wheel-noise");
     options.slips = error_on(o, "wheel-slips");
@@ -319,7 +320,7 @@ int run(Options& o) {
 
   const auto build_started = std::chrono::steady_clock::now();
   const SceneRequest request = make_request(o, config.sensor);
-  SequenceWriter writer(o.output, o.overwrite);
+  SequenceWriter writer(o.output, o.overwrite, sensor_options.range_noise_m);
   const GeneratedScene scene = generate_scene(request);
   LidarSimulator simulator(model, scene.world, scene.trajectory, o.seed);
   const double build_seconds =
@@ -332,7 +333,8 @@ int run(Options& o) {
       scene.world->moving_cars.size(), scene.world->walkers.size(), scene.path_length_m,
       build_seconds);
 
-  const MotionSensorData motion = simulate_motion_sensors(o, scene, config.sensor.scan_period);
+  const MotionSensorData motion =
+      simulate_motion_sensors(o, scene, config.sensor.scan_period, request.height());
   std::unique_ptr<BagOutput> bag;
   if (!o.bag.empty()) {
     bag = std::make_unique<BagOutput>(o.bag, motion);
@@ -380,6 +382,8 @@ int run(Options& o) {
   if (motion.imu) writer.write_imu(motion.imu_samples);
   if (motion.wheel) writer.write_wheel_odometry(motion.wheel_samples);
   if (motion.imu || motion.wheel) writer.write_sensors_yaml(sensors_yaml(description));
+  description.speed_changes = scene.speed_changes;
+  description.tunnel_entry_m = scene.tunnel_entry_m;
   writer.finish(run_yaml(description));
 
   print_class_shares(class_counts, points);
@@ -401,8 +405,10 @@ int main(int argc, char** argv) {
       "labels) in a generated scene, written as a KITTI-style folder."};
   Options o;
   app.add_option("--scenario", o.scenario,
-                 "scene: urban, highway, tunnel, vegetation, loop, green_highway (the highway with "
-                 "planted verges, as KITTI 01) or busy_street (crowded, as KITTI 04)")
+                 "scene: urban, highway, tunnel (a road tunnel with its furniture, entered from "
+                 "open road), vegetation, loop, green_highway (the highway with planted verges, as "
+                 "KITTI 01), busy_street (crowded, as KITTI 04), bare_tunnel (smooth walls, "
+                 "straight) or corridor (indoors, a robot's sensor)")
       ->required()
       ->check(CLI::IsMember(scenario_names()));
   app.add_option("--sensor", o.sensor,
@@ -457,7 +463,7 @@ int main(int argc, char** argv) {
          "of the same size (default 1)")
       ->check(CLI::Range(0.05, 2.0));
   app.add_option("--sensor-height", o.sensor_height,
-                 "sensor height above the road, m (default 1.73)")
+                 "sensor height above the road or floor, m (default 1.73; corridor 0.6)")
       ->check(CLI::Range(0.2, 5.0));
   app.add_flag("--identical-houses", o.identical_houses,
                "urban or loop: the same house on every lot, no side streets, trees or bushes (a "

@@ -198,3 +198,82 @@ TEST(Metrics, ShorterEstimateUsesTheCommonPrefix) {
   EXPECT_THROW(evaluate_odometry({}, truth), std::invalid_argument);
   EXPECT_THROW(relative_pose_error(estimate, truth), std::invalid_argument);
 }
+
+TEST(Metrics, AStraightDriveEstimatedTenPercentShortReachesNinetyPercent) {
+  const Poses truth = integrate(repeated(motion(1.0), 100));
+  const EndDrift drift = end_drift(integrate(repeated(motion(0.9), 100)), truth);
+  EXPECT_NEAR(*drift.reach_ratio, 0.9, 1e-12);
+  EXPECT_NEAR(*drift.along_track_percent, -10.0, 1e-9);
+  EXPECT_NEAR(*drift.cross_track_percent, 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(drift.ground_truth_path_m, 100.0);
+  EXPECT_NEAR(drift.estimated_path_m, 90.0, 1e-9);
+  // Running on past the true end: the true path's last step goes on straight.
+  const EndDrift beyond = end_drift(integrate(repeated(motion(1.1), 100)), truth);
+  EXPECT_NEAR(*beyond.along_track_percent, 10.0, 1e-9);
+  EXPECT_NEAR(*beyond.reach_ratio, 1.1, 1e-12);
+}
+
+TEST(Metrics, ASidewaysDriftIsCrossTrack) {
+  // Every step 2 cm to the left: the end 2 m off a 100 m path, as far along it as the truth's.
+  const Poses truth = integrate(repeated(motion(1.0), 100));
+  const EndDrift drift = end_drift(integrate(repeated(motion(1.0, 0, 0.02), 100)), truth);
+  EXPECT_NEAR(*drift.cross_track_percent, 2.0, 1e-9);
+  EXPECT_NEAR(*drift.along_track_percent, 0.0, 1e-9);
+  EXPECT_NEAR(*drift.reach_ratio, std::sqrt(1.0 + 0.02 * 0.02), 1e-12);
+}
+
+TEST(Metrics, AlongTrackFollowsACurve) {
+  // A quarter circle of 180 m; the estimate stays on it but covers 90 % of it.
+  const Poses truth = integrate(repeated(motion(1.0, 0.5), 180));
+  const EndDrift short_of = end_drift(integrate(repeated(motion(0.9, 0.45), 180)), truth);
+  // (Both polygons' corners lie on circles of the same radius a few centimetres apart.)
+  EXPECT_NEAR(*short_of.along_track_percent, -10.0, 0.05);
+  EXPECT_NEAR(*short_of.cross_track_percent, 0.0, 0.05);
+  EXPECT_NEAR(*short_of.reach_ratio, 0.9, 1e-9);
+  // The true end moved 3 m outward, away from the curve's centre: all of it cross-track.
+  Poses outside = truth;
+  const Eigen::Vector3d outward = -truth.back().linear().col(1);  // right of the heading
+  outside.back().translation() += 3.0 * outward;
+  const EndDrift off = end_drift(outside, truth);
+  EXPECT_NEAR(*off.cross_track_percent, 100.0 * 3.0 / 180.0, 0.05);
+  EXPECT_NEAR(*off.along_track_percent, 0.0, 0.05);
+  // Standing still there is no path to measure against.
+  const Poses standing(5, Eigen::Isometry3d::Identity());
+  EXPECT_FALSE(end_drift(standing, standing).reach_ratio.has_value());
+  EXPECT_FALSE(end_drift(standing, standing).along_track_percent.has_value());
+}
+
+TEST(Metrics, TheConstantVelocityBaselineKeepsTheFirstSecondsMotion) {
+  // Turning at a constant rate, the baseline is the truth itself.
+  const Poses circling = integrate(repeated(motion(1.5, 2.0, 0.05), 120));
+  const Poses same = constant_velocity_baseline(circling, 10);
+  ASSERT_EQ(same.size(), circling.size());
+  for (std::size_t i = 0; i < circling.size(); ++i)
+    EXPECT_TRUE(same[i].isApprox(circling[i], 1e-9)) << i;
+  // Speeding up from 10 to 20 m/s on a straight road (0.1 s scans): the baseline keeps the mean
+  // speed of the first second, 10.5 m/s, and falls behind.
+  Poses steps;
+  for (int i = 0; i < 100; ++i)
+    steps.push_back(motion(1.0 + 0.01 * i));
+  const Poses truth = integrate(steps);
+  const Poses baseline = constant_velocity_baseline(truth, 10);
+  EXPECT_NEAR(baseline[1].translation().x(), 1.045, 1e-12);
+  const EndDrift drift = end_drift(baseline, truth);
+  EXPECT_NEAR(*drift.reach_ratio, 104.5 / 149.5, 1e-9);
+  EXPECT_NEAR(*drift.cross_track_percent, 0.0, 1e-9);
+  // A window longer than the drive takes the whole drive.
+  EXPECT_NEAR(constant_velocity_baseline(truth, 1000).back().translation().x(),
+              truth.back().translation().x(), 1e-9);
+  EXPECT_EQ(constant_velocity_baseline(Poses{Eigen::Isometry3d::Identity()}, 10).size(), 1u);
+}
+
+TEST(Metrics, StepsWithinTheFirstSecond) {
+  std::vector<double> times;
+  for (int i = 0; i < 40; ++i)
+    times.push_back(100.0 + 0.1 * i);
+  EXPECT_EQ(steps_within(times, 1.0), 10u);
+  for (double& time : times)
+    time *= 0.5;  // 20 Hz
+  EXPECT_EQ(steps_within(times, 1.0), 20u);
+  EXPECT_EQ(steps_within({0.0}, 1.0), 0u);
+}

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "adaptive_lego_loam/sim/observability.h"
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/sequence_writer.h"
 #include "adaptive_lego_loam/sim/simulator.h"
@@ -48,9 +50,9 @@ struct Character {
   }
 };
 
-Character character_of(ScenarioKind kind) {
+Character character_of(const std::vector<SimFrame>& frames) {
   Character c;
-  for (const SimFrame& frame : frames_of(kind)) {
+  for (const SimFrame& frame : frames) {
     for (std::size_t i = 0; i < frame.labels.size(); ++i) {
       const SemanticClass semantic = label_class(frame.labels[i]);
       ++c.points;
@@ -64,6 +66,38 @@ Character character_of(ScenarioKind kind) {
     }
   }
   return c;
+}
+
+Character character_of(ScenarioKind kind) {
+  return character_of(frames_of(kind));
+}
+
+// A VLP-16 (1800 columns, raw sweeps) driving `scene`.
+LidarSimulator simulator_for(const GeneratedScene& scene, uint64_t seed) {
+  SimSensorOptions options;
+  options.columns = 1800;
+  return LidarSimulator(LidarModel(vlp16(), options), scene.world, scene.trajectory, seed);
+}
+
+// The first frame at which the drive has gone `past` m beyond the tunnel's portal.
+int frame_inside(const GeneratedScene& scene, double past) {
+  const Trajectory& drive = *scene.trajectory;
+  double driven = 0.0;
+  for (int frame = 1; frame < drive.frame_limit(); ++frame) {
+    driven += (drive.sensor_pose(drive.frame_time(frame)).translation() -
+               drive.sensor_pose(drive.frame_time(frame - 1)).translation())
+                  .norm();
+    if (driven >= *scene.tunnel_entry_m + past) return frame;
+  }
+  return -1;
+}
+
+// Speed along the drive, m/s, from the sensor's positions `dt` apart.
+double speed_at(const Trajectory& drive, double time, double dt = 0.01) {
+  return (drive.sensor_pose(time + 0.5 * dt).translation() -
+          drive.sensor_pose(time - 0.5 * dt).translation())
+             .norm() /
+         dt;
 }
 
 bool same_bytes(const std::vector<SimFrame>& a, const std::vector<SimFrame>& b) {
@@ -109,17 +143,22 @@ TEST_P(EveryScenario, GeneratesLabelledScans) {
     for (uint32_t label : frame.labels)
       ASSERT_NE(label_class(label), SemanticClass::kUnlabeled);
   }
-  // The sensor moves forward along x from frame to frame.
+  // The sensor moves forward along x from frame to frame, at about the scenario's speed.
   const Eigen::Vector3d step =
       (frames[0].sensor_pose.inverse() * frames[1].sensor_pose).translation();
-  EXPECT_GT(step.x(), 0.3);
+  EXPECT_GT(step.x(), 0.05 * default_scenario(GetParam()).cruise_speed_mps);
   EXPECT_LT(std::abs(step.y()), 0.2 * step.x());
+  // Every point has its exact geometry, for the scan's true observability.
+  for (const SimFrame& frame : frames) {
+    ASSERT_EQ(frame.exact_points.size(), frame.labels.size());
+    ASSERT_EQ(frame.exact_normals.size(), frame.labels.size());
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Sim, EveryScenario,
                          ::testing::Values(ScenarioKind::kUrban, ScenarioKind::kHighway,
                                            ScenarioKind::kTunnel, ScenarioKind::kVegetation,
-                                           ScenarioKind::kLoop),
+                                           ScenarioKind::kLoop, ScenarioKind::kCorridor),
                          [](const auto& info) { return kind_name(info.param); });
 
 TEST(SimScenarios, SameSeedSameBytesOtherSeedOtherScene) {
@@ -138,22 +177,102 @@ TEST(SimScenarios, VegetationShareSetsTheScenariosApart) {
   const double vegetation = character_of(ScenarioKind::kVegetation).vegetation_share();
   const double urban = character_of(ScenarioKind::kUrban).vegetation_share();
   const double highway = character_of(ScenarioKind::kHighway).vegetation_share();
-  const double tunnel = character_of(ScenarioKind::kTunnel).vegetation_share();
+  const double corridor = character_of(ScenarioKind::kCorridor).vegetation_share();
   EXPECT_GT(vegetation, 0.35);
   EXPECT_GT(vegetation, 2.5 * urban);
   EXPECT_GT(urban, 0.01);
   EXPECT_LT(highway, 0.15);
-  EXPECT_EQ(tunnel, 0.0);
+  EXPECT_EQ(corridor, 0.0);
 }
 
-TEST(SimScenarios, TunnelHasWallsOnBothSidesAndNothingAcrossTheRoad) {
-  const Character tunnel = character_of(ScenarioKind::kTunnel);
-  const long walls = tunnel.structure_left + tunnel.structure_right;
-  EXPECT_GT(tunnel.share(SemanticClass::kOtherStructure), 0.3);
-  EXPECT_GT(tunnel.structure_left, 0.3 * walls);
-  EXPECT_GT(tunnel.structure_right, 0.3 * walls);
-  // Smooth walls give no constraint along the road: almost no surface faces along it.
-  EXPECT_LT(double(tunnel.facing_along_road) / tunnel.non_ground, 0.03);
+// Both tunnels start on open road, enter the portal at the cruise speed, brake to 5 m/s inside
+// and pull away again, smoothly.
+TEST(SimScenarios, TunnelsAreEnteredAtSpeedAndBrakeInside) {
+  for (const std::string name : {"tunnel", "bare_tunnel"}) {
+    SceneRequest request = request_for(ScenarioKind::kTunnel, 3, 600);
+    request.scenario = named_scenario(name);
+    const GeneratedScene scene = generate_scene(request);
+    const Trajectory& drive = *scene.trajectory;
+    ASSERT_TRUE(scene.tunnel_entry_m.has_value()) << name;
+    EXPECT_GE(*scene.tunnel_entry_m, 90.0);
+    EXPECT_LE(*scene.tunnel_entry_m, 120.0);
+    ASSERT_EQ(scene.speed_changes.size(), 2u) << name;
+    const double portal_time = *scene.tunnel_entry_m / 15.0;
+    EXPECT_NEAR(speed_at(drive, 0.0), 15.0, 0.01) << name;
+    EXPECT_NEAR(speed_at(drive, portal_time), 15.0, 0.01) << name;
+    double slowest = 1e9, steepest = 0.0, previous = speed_at(drive, 0.0);
+    for (double t = 0.05; t < 60.0; t += 0.05) {
+      const double speed = speed_at(drive, t);
+      slowest = std::min(slowest, speed);
+      steepest = std::max(steepest, std::abs(speed - previous) / 0.05);
+      previous = speed;
+    }
+    EXPECT_NEAR(slowest, 5.0, 0.05) << name;
+    EXPECT_LE(steepest, 1.05) << name << ": at most 1 m/s^2 and no jumps";
+    EXPECT_NEAR(speed_at(drive, 59.0), 15.0, 0.1) << name << ": back at speed within a minute";
+  }
+}
+
+// Deep inside the bare tunnel smooth walls give no constraint along the road; the furnished
+// tunnel's lamps, signs, niches and fans do.
+TEST(SimScenarios, TheBareTunnelFixesNothingAlongTheRoadTheFurnishedOneDoes) {
+  double weakest_sigma[2];
+  for (int furnished = 0; furnished < 2; ++furnished) {
+    SceneRequest request = request_for(ScenarioKind::kTunnel, 3, 300);
+    request.scenario = named_scenario(furnished ? "tunnel" : "bare_tunnel");
+    const GeneratedScene scene = generate_scene(request);
+    const int frame = frame_inside(scene, 110.0);  // the portal out of the VLP-16's range
+    ASSERT_GT(frame, 0);
+    const std::vector<SimFrame> frames{simulator_for(scene, 3).render(frame)};
+    const Character tunnel = character_of(frames);
+    const WeakestTranslation weakest = weakest_translation(scan_information(frames[0], 0.02));
+    weakest_sigma[furnished] = weakest.sigma_m;
+    std::printf("[ measured ] %s, frame %d: weakest translation %.4f m along (%.2f, %.2f, %.2f)\n",
+                request.scenario.name.c_str(), frame, weakest.sigma_m, weakest.direction.x(),
+                weakest.direction.y(), weakest.direction.z());
+    EXPECT_GT(std::abs(weakest.direction.x()), 0.99) << "along the road";
+    const long walls = tunnel.structure_left + tunnel.structure_right;
+    EXPECT_GT(tunnel.share(SemanticClass::kOtherStructure), 0.3);
+    EXPECT_GT(tunnel.structure_left, 0.3 * walls);
+    EXPECT_GT(tunnel.structure_right, 0.3 * walls);
+    const double facing = double(tunnel.facing_along_road) / tunnel.non_ground;
+    if (furnished) {
+      EXPECT_GT(tunnel.share(SemanticClass::kTrafficSign), 0.0);
+      EXPECT_GT(tunnel.share(SemanticClass::kOtherObject), 0.0);
+    } else {
+      EXPECT_EQ(tunnel.share(SemanticClass::kTerrain), 0.0);
+      EXPECT_LT(facing, 0.01);
+    }
+  }
+  EXPECT_GT(weakest_sigma[0], 10.0 * weakest_sigma[1]);
+}
+
+// A robot's drive: 0.6 m above the floor at 1.5 m/s, standing still for a while, and a 90 deg
+// turn into a second corridor; walls, doors and floor only.
+TEST(SimScenarios, CorridorTurnsIntoASecondCorridorWithStops) {
+  const GeneratedScene scene = generate_scene(request_for(ScenarioKind::kCorridor, 3, 400));
+  const Trajectory& drive = *scene.trajectory;
+  EXPECT_NEAR(drive.sensor_pose(0.0).translation().z(), 0.6, 1e-9);
+  double fastest = 0.0, standing = 0.0;
+  for (double t = 0.0; t < 40.0; t += 0.05) {
+    const double speed = speed_at(drive, t);
+    fastest = std::max(fastest, speed);
+    standing += speed < 1e-6 ? 0.05 : 0.0;
+  }
+  EXPECT_NEAR(fastest, 1.5, 1e-3);
+  EXPECT_GE(standing, 4.0) << "two stops of 2-4 s";
+  const Eigen::Matrix3d turned =
+      drive.sensor_pose(0.0).linear().transpose() * drive.sensor_pose(40.0).linear();
+  EXPECT_NEAR(std::abs(std::atan2(turned(1, 0), turned(0, 0))), 0.5 * M_PI, 1e-3);
+  const Character corridor = character_of(ScenarioKind::kCorridor);
+  EXPECT_GT(corridor.share(SemanticClass::kBuilding), 0.8);
+  EXPECT_GT(corridor.share(SemanticClass::kOtherGround), 0.01);
+  EXPECT_EQ(corridor.share(SemanticClass::kBuilding) + corridor.share(SemanticClass::kOtherGround),
+            1.0);
+  SceneRequest recorded = request_for(ScenarioKind::kCorridor, 3);
+  recorded.trajectory_times = {0.0, 0.1, 0.2};
+  recorded.trajectory_poses.assign(3, Eigen::Isometry3d::Identity());
+  EXPECT_THROW(generate_scene(recorded), std::invalid_argument);
 }
 
 TEST(SimScenarios, HighwayIsBarriersWallsAndShrubsAlongTheRoad) {

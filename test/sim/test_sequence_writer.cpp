@@ -9,11 +9,13 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "adaptive_lego_loam/sim/observability.h"
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/sequence_writer.h"
 #include "adaptive_lego_loam/sim/simulator.h"
@@ -29,7 +31,7 @@ TEST(SimSequenceWriter, WritesAKittiFolder) {
   std::filesystem::remove_all(dir);
   const std::vector<SimFrame>& frames = frames_of(ScenarioKind::kUrban);
   {
-    SequenceWriter writer(dir.string(), false);
+    SequenceWriter writer(dir.string(), false, 0.02);
     for (int i = 0; i < kFrames; ++i)
       writer.write_frame(i, frames[i]);
     writer.finish("seed: 3\n");
@@ -53,9 +55,28 @@ TEST(SimSequenceWriter, WritesAKittiFolder) {
   const std::string calib_text((std::istreambuf_iterator<char>(calib)),
                                std::istreambuf_iterator<char>());
   EXPECT_NE(calib_text.find("Tr: 1 0 0 0 0 1 0 0 0 0 1 0"), std::string::npos);
+  // observability.csv: comment lines, then per scan its index and its information matrix.
+  std::ifstream observability(dir / "observability.csv");
+  std::string line;
+  int scans = 0;
+  while (std::getline(observability, line)) {
+    if (line.front() == '#') continue;
+    std::vector<double> fields;
+    std::stringstream fields_of(line);
+    for (std::string field; std::getline(fields_of, field, ',');)
+      fields.push_back(std::stod(field));
+    ASSERT_EQ(fields.size(), 37u) << line;
+    EXPECT_EQ(fields[0], scans);
+    const Information6 expected = scan_information(frames[scans], 0.02);
+    for (int k = 0; k < 36; ++k)
+      EXPECT_NEAR(fields[1 + k], expected(k / 6, k % 6), 1e-8 * expected.norm()) << k;
+    ++scans;
+  }
+  EXPECT_EQ(scans, kFrames);
   // A second run into the same folder must not silently mix two sequences.
-  EXPECT_THROW(SequenceWriter(dir.string(), false), IoError);
-  EXPECT_NO_THROW(SequenceWriter(dir.string(), true));
+  EXPECT_THROW(SequenceWriter(dir.string(), false, 0.02), IoError);
+  EXPECT_NO_THROW(SequenceWriter(dir.string(), true, 0.02));
   EXPECT_FALSE(std::filesystem::exists(dir / "velodyne" / "000001.bin"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "observability.csv"));
   std::filesystem::remove_all(dir);
 }

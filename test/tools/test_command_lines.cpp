@@ -87,3 +87,17 @@ TEST(CommandLines, LidarSimMotionSensorOptionsAreChecked) {
     EXPECT_EQ(output.rfind("lidar_sim: ", 0), 0u) << output;
   }
 }
+
+TEST(CommandLines, AnUnknownBaselineIsAUsageErrorNamingTheKnownOnes) {
+  const std::string poses = std::string(TEST_DATA_DIR) + "/kitti_seq07/poses.txt";
+  const std::string evaluate = tool("evaluate_odometry") + " --gt " + poses + " --est " + poses;
+  for (const char* baseline : {"wheel odometry.csv", "constant-velocity extra.csv"}) {
+    const auto [status, output] = stderr_of(evaluate + " --baseline " + std::string(baseline));
+    EXPECT_EQ(status, 2) << baseline << ": " << output;
+    EXPECT_EQ(lines_of(output), 1) << output;
+    EXPECT_NE(output.find("constant-velocity"), std::string::npos) << output;
+  }
+  const auto [status, output] = run_command(evaluate + " --baseline constant-velocity");
+  EXPECT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("reach ratio"), std::string::npos) << output;
+}

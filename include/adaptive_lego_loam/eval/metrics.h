@@ -1,8 +1,9 @@
 #pragma once
-// Odometry metrics of docs/METHOD.md (Metrics): RPE per frame, the KITTI segment metric and
-// ATE after a rigid alignment. P is the estimate, Q the ground truth; both are poses of the same
-// sensor frame in that trajectory's first frame (x_world = pose * x_sensor). Index i of one
-// trajectory is the same scan as index i of the other.
+// Odometry metrics of docs/METHOD.md (Metrics): RPE per frame, the KITTI segment metric, ATE
+// after a rigid alignment, and the drift at the end of a drive (how far it got along the road). P
+// is the estimate, Q the ground truth; both are poses of the same sensor frame in that trajectory's
+// first frame (x_world = pose * x_sensor). Index i of one trajectory is the same scan as index i of
+// the other.
 //
 // The metric functions throw std::invalid_argument when the trajectories are empty or differ in
 // length; evaluate_odometry() takes their common prefix instead.
@@ -71,6 +72,37 @@ AbsoluteTrajectoryError absolute_trajectory_error(
 std::vector<Eigen::Isometry3d> camera_to_lidar_poses(
     const std::vector<Eigen::Isometry3d>& camera_poses, const Eigen::Isometry3d& velo_to_cam);
 
+// Where the estimated drive ended up relative to the true path, in the horizontal (x-y) plane of
+// the trajectories' frame. A degenerate scene (a tunnel) shows as an estimate that falls short or
+// runs on along the road (along-track) rather than one that leaves it (cross-track).
+struct EndDrift {
+  double estimated_path_m = 0;  // sum of the estimate's steps
+  double ground_truth_path_m = 0;
+  // Estimated over true path length; empty when the true path has no length.
+  std::optional<double> reach_ratio;
+  // The estimated end projected onto the true path (its first and last steps extended straight
+  // on): its arc length minus the true end's, % of the true path's horizontal length. Negative:
+  // the estimate fell short.
+  std::optional<double> along_track_percent;
+  // The estimated end's horizontal distance from the true path, % of its horizontal length.
+  std::optional<double> cross_track_percent;
+};
+
+// Over the whole of both trajectories (same length, not empty; std::invalid_argument otherwise).
+EndDrift end_drift(const std::vector<Eigen::Isometry3d>& estimate,
+                   const std::vector<Eigen::Isometry3d>& ground_truth);
+
+// Dead reckoning at the ground truth's mean velocity over its first `window_frames` steps (in the
+// sensor frame: the motion Q_0^-1 Q_k spread evenly over k steps), kept for the whole drive from
+// the first true pose: what a constant-velocity guess gets without any scan. With fewer poses
+// than the window, over those there are.
+std::vector<Eigen::Isometry3d> constant_velocity_baseline(
+    const std::vector<Eigen::Isometry3d>& ground_truth, std::size_t window_frames);
+
+// How many steps the first `seconds` of scan times (increasing) span: the largest k with
+// times[k] - times[0] <= seconds.
+std::size_t steps_within(const std::vector<double>& times, double seconds);
+
 struct OdometryEvaluation {
   std::size_t estimate_frames = 0;
   std::size_t ground_truth_frames = 0;
@@ -78,9 +110,10 @@ struct OdometryEvaluation {
   RelativePoseError rpe;
   KittiSegmentError kitti;
   AbsoluteTrajectoryError ate;
+  EndDrift drift;
 };
 
-// All three metrics over the common prefix of the two trajectories. Throws std::invalid_argument
+// All the metrics over the common prefix of the two trajectories. Throws std::invalid_argument
 // when either is empty.
 OdometryEvaluation evaluate_odometry(const std::vector<Eigen::Isometry3d>& estimate,
                                      const std::vector<Eigen::Isometry3d>& ground_truth,

@@ -13,6 +13,7 @@ enum class SemanticClass : uint16_t {
   kPerson = 30,
   kRoad = 40,
   kSidewalk = 48,
+  kOtherGround = 49,
   kBuilding = 50,
   kFence = 51,
   kOtherStructure = 52,
@@ -21,6 +22,7 @@ enum class SemanticClass : uint16_t {
   kTerrain = 72,
   kPole = 80,
   kTrafficSign = 81,
+  kOtherObject = 99,
   kMovingCar = 252,
   kMovingPerson = 254,
 };
@@ -35,10 +37,16 @@ inline uint16_t label_instance(uint32_t label) {
   return static_cast<uint16_t>(label >> 16);
 }
 
-// Road, sidewalk and terrain: the classes a ground segmentation should find.
+// Road, sidewalk, terrain and other ground (a floor): the classes a ground segmentation should
+// find.
 inline bool is_ground_class(SemanticClass semantic) {
   return semantic == SemanticClass::kRoad || semantic == SemanticClass::kSidewalk ||
-         semantic == SemanticClass::kTerrain;
+         semantic == SemanticClass::kTerrain || semantic == SemanticClass::kOtherGround;
+}
+
+// Things that move during a drive: they do not constrain the sensor's own motion.
+inline bool is_moving_class(SemanticClass semantic) {
+  return semantic == SemanticClass::kMovingCar || semantic == SemanticClass::kMovingPerson;
 }
 
 // SemanticKITTI's name of the class, e.g. "moving-car".

@@ -60,8 +60,14 @@ struct PathPiece {
   double curvature = 0.0;  // 1/m, positive turns left
 };
 
-// Samples the pieces every metre starting at the origin heading along x; z stays 0 (heights are
-// set by the caller).
-std::vector<Eigen::Vector3d> trace_pieces(const std::vector<PathPiece>& pieces);
+// A curve whose curvature ramps up in `steps` equal steps over `transition` m, holds
+// `curvature` for `arc` m and ramps down again (a clothoid's transition, approximately), so that
+// the lateral acceleration of a vehicle on it changes gradually. It turns by
+// curvature x (arc + transition).
+std::vector<PathPiece> eased_curve(double curvature, double arc, double transition, int steps);
+
+// Samples the pieces every `step` m (or a little less, to end each piece on a sample) starting at
+// the origin heading along x; z stays 0 (heights are set by the caller).
+std::vector<Eigen::Vector3d> trace_pieces(const std::vector<PathPiece>& pieces, double step = 1.0);
 
 }  // namespace adaptive_lego_loam::sim

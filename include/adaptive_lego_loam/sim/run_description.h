@@ -39,6 +39,8 @@ struct RunDescription {
   std::optional<ImuDescription> imu;
   std::optional<WheelOdometryDescription> wheel_odometry;
   std::vector<std::string> sensor_faults;  // as parse_faults reads them
+  std::vector<SpeedChange> speed_changes;  // GeneratedScene's
+  std::optional<double> tunnel_entry_m;
 };
 
 std::string run_yaml(const RunDescription& run);

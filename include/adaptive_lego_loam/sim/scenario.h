@@ -9,14 +9,16 @@
 #include <vector>
 
 #include "adaptive_lego_loam/sim/smooth_trajectory.h"
+#include "adaptive_lego_loam/sim/speed_profile.h"
 #include "adaptive_lego_loam/sim/trajectory.h"
 #include "adaptive_lego_loam/sim/world.h"
 
 namespace adaptive_lego_loam::sim {
 
 // How a scene is built (the path, the road's cross-section, the layout of its objects).
-enum class ScenarioKind { kUrban, kHighway, kTunnel, kVegetation, kLoop };
-std::string kind_name(ScenarioKind kind);  // "urban", "highway", "tunnel", "vegetation", "loop"
+enum class ScenarioKind { kUrban, kHighway, kTunnel, kVegetation, kLoop, kCorridor };
+// "urban", "highway", "tunnel", "vegetation", "loop", "corridor"
+std::string kind_name(ScenarioKind kind);
 
 // What a scenario's scene holds. Densities are per 100 m of road and per side.
 struct ScenarioParams {
@@ -29,6 +31,9 @@ struct ScenarioParams {
   double ego_lateral = -1.75;  // where the ego vehicle drives, left of the centreline (m)
   double cruise_speed_mps = 10.0;
   double speed_variation = 0.1;  // +- share of the cruise speed, over 20 s
+  // > 0: inside a tunnel the drive brakes to this speed and accelerates back (speed_profile.h).
+  double slow_speed_mps = 0.0;
+  double sensor_height_m = 1.73;  // above the road or floor, unless the request sets another
   // Terrain: hills (amplitude of their sum, wavelength) and small relief off the road.
   double hill_amplitude_m = 2.0;
   double hill_wavelength_m = 400.0;
@@ -61,6 +66,10 @@ struct ScenarioParams {
   double junctions_per_km = 0.0;  // side streets branching off (urban)
   bool guard_rails = false;
   bool tunnel = false;
+  // A road tunnel's furniture (lamps, emergency niches, signs, jet fans, a cable tray) and a
+  // gentle curve inside it; without them, smooth walls and vault on a straight line.
+  bool tunnel_furniture = false;
+  bool tunnel_curve = false;
   // Vegetation: the leaf jitter from scan to scan (wind), and how dense the foliage is: a
   // multiple of each plant's extinction, with as many more leaf facets of the same size.
   double leaf_jitter_m = 0.04;
@@ -73,10 +82,11 @@ struct ScenarioParams {
 
 ScenarioParams default_scenario(ScenarioKind kind);
 
-// The named scenarios: one per kind ("urban", "highway", "tunnel", "vegetation", "loop") and
-// variants of a kind with other contents: "green_highway" (the highway with planted verges,
-// shrub belts and tree rows on both sides, as KITTI 01) and "busy_street" (a street crowded with
-// parked and moving cars, people, hedges and street furniture, as KITTI 04).
+// The named scenarios: one per kind ("urban", "highway", "tunnel", "vegetation", "loop",
+// "corridor") and variants of a kind with other contents: "green_highway" (the highway with
+// planted verges, shrub belts and tree rows on both sides, as KITTI 01), "busy_street" (a street
+// crowded with parked and moving cars, people, hedges and street furniture, as KITTI 04) and
+// "bare_tunnel" (the tunnel without furniture and curve: smooth walls, the limit case).
 const std::vector<std::string>& scenario_names();
 // Throws std::invalid_argument listing the names.
 ScenarioParams named_scenario(const std::string& name);
@@ -91,13 +101,14 @@ struct SceneRequest {
   int laps = 1;  // a loop scenario goes round this many times in the requested frames
   int frames = 100;
   double frame_period = 0.1;
-  double sensor_height = 1.73;  // above the road
-  double reach = 120.0;         // the sensor's maximum range: the scene extends this far
+  std::optional<double> sensor_height;  // above the road; unset: the scenario's
+  double reach = 120.0;                 // the sensor's maximum range: the scene extends this far
   // A recorded trajectory (vehicle axes: x forward, z up) with its times; empty: a synthetic path.
   std::vector<double> trajectory_times;
   std::vector<Eigen::Isometry3d> trajectory_poses;
 
   uint64_t scene() const { return scene_seed ? *scene_seed : seed; }
+  double height() const { return sensor_height ? *sensor_height : scenario.sensor_height_m; }
 };
 
 struct GeneratedScene {
@@ -109,7 +120,9 @@ struct GeneratedScene {
   // The same with its derivatives, for the IMU and the wheel odometry.
   std::shared_ptr<const SmoothTrajectory> motion;
   double path_length_m = 0.0;
-  double drive_length_m = 0.0;  // driven over the requested frames
+  double drive_length_m = 0.0;             // driven over the requested frames
+  std::vector<SpeedChange> speed_changes;  // of a synthetic drive's speed profile
+  std::optional<double> tunnel_entry_m;    // how far the drive goes before the tunnel's portal
 };
 
 // A recorded trajectory's positions are smoothed to this cutoff: KITTI's ground truth carries

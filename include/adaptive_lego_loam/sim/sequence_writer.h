@@ -1,7 +1,8 @@
 #pragma once
 // Writes a simulated sequence as a KITTI-style folder: velodyne/NNNNNN.bin, labels/NNNNNN.label
 // (SemanticKITTI packing), poses.txt (sensor poses, first identity), times.txt, calib.txt
-// (identity Tr: the poses are the LiDAR's) and scenario.yaml.
+// (identity Tr: the poses are the LiDAR's), observability.csv (each scan's true information
+// matrix, observability.h) and scenario.yaml.
 
 #include <Eigen/Geometry>
 #include <string>
@@ -16,10 +17,12 @@ class SequenceWriter {
  public:
   // Creates `dir` with velodyne/ and labels/. Throws IoError when `dir` already holds a sequence
   // (unless `overwrite`, which removes the files a sequence consists of) or cannot be written.
-  SequenceWriter(std::string dir, bool overwrite);
+  // `range_noise_m`: the sensor's, the sigma of the scans' information.
+  SequenceWriter(std::string dir, bool overwrite, double range_noise_m);
 
   void write_frame(int index, const SimFrame& frame);
-  // Writes poses.txt (relative to the first frame's pose), times.txt, calib.txt, scenario.yaml.
+  // Writes poses.txt (relative to the first frame's pose), times.txt, calib.txt,
+  // observability.csv, scenario.yaml.
   void finish(const std::string& scenario_yaml);
   // The motion sensors' files, when they are simulated: imu.csv, wheel_odom.csv
   // (io/motion_sensor_files.h) and sensors.yaml (run_description.h's sensors_yaml).
@@ -35,6 +38,8 @@ class SequenceWriter {
   Eigen::Isometry3d first_pose_ = Eigen::Isometry3d::Identity();
   std::vector<Eigen::Isometry3d> relative_poses_;
   std::vector<double> times_;
+  double range_noise_m_;
+  std::string observability_;
 };
 
 // One uint32 per point, little-endian, as SemanticKITTI's .label files.

@@ -20,6 +20,10 @@ struct SimFrame {
   Scan scan;  // sensor frame, with ring (= beam, 0 lowest) and time (s from the sweep's start)
   std::vector<uint32_t> labels;          // per point, SemanticKITTI packing
   std::vector<Eigen::Vector3f> normals;  // per point, sensor frame, unit, facing the sensor
+  // Per point, the surface it came from without range noise (of a mixed echo, its strongest
+  // surface's hit) and that surface's normal, both in the sensor frame at the scan's time
+  // (`sensor_pose`): the scan's exact geometry, from which its true observability follows.
+  std::vector<Eigen::Vector3f> exact_points, exact_normals;
   // World, at the scan's time: where a skewed sweep ends (its first firing a scan period before).
   Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();
   double time = 0.0;
@@ -45,8 +49,13 @@ class LidarSimulator {
   void make_rays(int first_column, int width);
   // The echo a beam reports from its footprint rays' hits (`count` of them, `stride` apart,
   // the centre first): the strongest after merging echoes closer than the merge distance, at its
-  // energy-weighted range. Nothing when no hit lies within the sensor's range.
-  std::optional<Hit> strongest_echo(const Hit* hits, int count, std::size_t stride) const;
+  // energy-weighted range, and which footprint ray hit its strongest surface. Nothing when no
+  // hit lies within the sensor's range.
+  struct Echo {
+    Hit hit;
+    int footprint_ray = 0;
+  };
+  std::optional<Echo> strongest_echo(const Hit* hits, int count, std::size_t stride) const;
   // Appends the point (without its time) and label of a hit that comes back; false when the
   // return is lost (out of range, grazing incidence).
   bool add_return(const Hit& hit, const Eigen::Vector3f& direction, int beam, int column, Rng& rng,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "adaptive_lego_loam/sim/path.h"
+#include "adaptive_lego_loam/sim/speed_profile.h"
 
 namespace adaptive_lego_loam::sim {
 
@@ -52,15 +53,6 @@ class Trajectory {
   virtual double frame_time(int frame) const = 0;
   // How many frames the trajectory covers.
   virtual int frame_limit() const = 0;
-};
-
-// Speed that varies slowly around a cruise speed: v(t) = v0 (1 + a sin(2 pi t / T + phase)).
-struct SpeedProfile {
-  double cruise_mps = 10.0;
-  double variation = 0.1;  // a
-  double period_s = 20.0;  // T
-  double phase = 0.0;
-  double distance(double time) const;  // integral of v from 0 to time
 };
 
 // A vehicle driving along a path, the sensor `sensor_height` above the road, yawed along the path

@@ -20,6 +20,7 @@ std::vector<PathPiece> open_pieces(ScenarioKind kind, double length, double lead
   };
   switch (kind) {
     case ScenarioKind::kTunnel:
+    case ScenarioKind::kCorridor:
       add(length, 0.0);
       break;
     case ScenarioKind::kHighway:

@@ -35,6 +35,7 @@ std::vector<Lane> traffic_lanes(const ScenarioParams& p) {
     case ScenarioKind::kTunnel:
       return {{-2.25, 1.0}, {2.25, -1.0}};
     case ScenarioKind::kVegetation:
+    case ScenarioKind::kCorridor:
       return {};
   }
   return {};
@@ -43,7 +44,7 @@ std::vector<Lane> traffic_lanes(const ScenarioParams& p) {
 }  // namespace
 
 void add_moving_cars(World& world, const Path& path, const ScenarioParams& p, double ego_start_s,
-                     bool ego_lane_allowed, Rng& rng) {
+                     bool ego_lane_allowed, bool slows_down, Rng& rng) {
   if (p.moving_cars_per_km_lane <= 0.0) return;
   const uint32_t count_per_lane =
       static_cast<uint32_t>(std::lround(p.moving_cars_per_km_lane * path.length() / 1000.0));
@@ -59,7 +60,7 @@ void add_moving_cars(World& world, const Path& path, const ScenarioParams& p, do
       double speed = p.cruise_speed_mps * rng.uniform(0.7, 1.2);
       if (ego_lane) {
         const bool ahead = car.motion.start_s > ego_start_s + 15.0;
-        if (!ahead && car.motion.start_s > ego_start_s - 15.0) continue;
+        if (!ahead && (slows_down || car.motion.start_s > ego_start_s - 15.0)) continue;
         speed = p.cruise_speed_mps * (ahead ? rng.uniform(1.12, 1.3) : rng.uniform(0.7, 0.88));
       }
       car.motion.speed = lane.direction * speed;
