@@ -14,10 +14,12 @@
 namespace adaptive_lego_loam::sim {
 
 struct WheelOdometryOptions {
-  // The base frame's pose in the LiDAR frame (the config's wheel_odometry.extrinsic_*): on the
-  // ground below the LiDAR (z = -sensor height) and behind it on the rear axle.
+  // The base frame's pose in the LiDAR frame (the config's wheel_odometry.extrinsic_*): the rear
+  // axle's centre on the ground below the LiDAR (z = -sensor height). The simulated vehicle's
+  // path is the LiDAR's, heading along its tangent: the point that does not slide sideways in a
+  // turn is the one below the LiDAR, so the rear axle is there.
   std::array<double, 3> mount_rpy_deg{0.0, 0.0, 0.0};
-  std::array<double, 3> mount_xyz_m{-0.4, 0.0, -1.73};
+  std::array<double, 3> mount_xyz_m{0.0, 0.0, -1.73};
   double rate_hz = 50.0;
   double track_width_m = 1.6;       // between the rear wheels
   double wheel_speed_noise = 0.03;  // m/s per wheel, white

@@ -298,6 +298,9 @@ void read_mapping(SectionReader& in, MappingParams& m) {
   }
   in.number("degeneracy_eigenvalue", m.degeneracy_eigenvalue, 0.0, 1e9);
   in.number("residual_sigma", m.residual_sigma, 1e-4, 10.0);
+  in.number("degenerate_translation_sigma", m.degenerate_translation_sigma, 1e-4, 1000.0);
+  in.number("degenerate_rotation_sigma_deg", m.degenerate_rotation_sigma_deg, 1e-4, 180.0);
+  in.number("gravity_sigma_deg", m.gravity_sigma_deg, 0.001, 90.0);
   in.number("weak_direction_prior", m.weak_direction_prior, 0.0, 1e6);
   in.number("vertical_prior_weight", m.vertical_prior_weight, 0.0, 1e6);
   in.number("vertical_prior_max_tilt_deg", m.vertical_prior_max_tilt_deg, 0.0, 45.0);

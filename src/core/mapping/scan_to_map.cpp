@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/rotations.h"
+#include "adaptive_lego_loam/core/odometry/observability.h"
 #include "adaptive_lego_loam/core/odometry/residuals.h"
 
 namespace adaptive_lego_loam {
@@ -107,11 +108,31 @@ Eigen::Matrix<double, N, N> pseudo_inverse(const Eigen::Matrix<double, N, N>& co
   return solver.eigenvectors() * inverse.asDiagonal() * solver.eigenvectors().transpose();
 }
 
+// The part of a prior's information (6 x 6) on the directions the correspondences leave open:
+// the translation's and the rotation's principal directions (the other marginalised) whose sigma
+// is beyond the thresholds. There the prior replaces what the scene cannot measure; elsewhere the
+// match is the LiDAR's alone, which the motion sensors then learn from without counting their own
+// prediction twice.
+Matrix6d on_degenerate_directions(const Matrix6d& prior, const Observability& seen,
+                                  double translation_sigma, double rotation_sigma) {
+  Matrix6d projector = Matrix6d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    if (seen.rotation_sigma(k) > rotation_sigma) {
+      const Eigen::Vector3d v = seen.rotation_directions.col(k);
+      projector.topLeftCorner<3, 3>() += v * v.transpose();
+    }
+    if (seen.translation_sigma(k) > translation_sigma) {
+      const Eigen::Vector3d v = seen.translation_directions.col(k);
+      projector.bottomRightCorner<3, 3>() += v * v.transpose();
+    }
+  }
+  return projector * prior * projector;
+}
+
 // A prior is trusted up to about this many of its sigmas, then its pull fades (a slipping wheel,
 // an IMU after a knock).
 constexpr double kPriorRobustSigmas = 5.0;
-// Gravity's direction is never known better than this from a moving vehicle (rad).
-constexpr double kGravityFloor = 1e-3;
+
 
 // Each patch weighs by Tukey's biweight of its tilt from vertical at the guess, nothing at
 // max_tilt_deg: a steep slope (an embankment, a battered retaining wall) that the guess shows
@@ -286,7 +307,10 @@ struct SteppedMapMatch::State {
   void find_degenerate_directions(ceres::Problem& problem, double* q, double* t);
   // The motion sensors' residual blocks (made once), added to an iteration's problem, and their
   // J^T J in the solver's tangent space.
-  void make_sensor_costs();
+  // The gravity prior's cost (made with the match), the motion prior's (made on the first
+  // iteration's correspondences: it holds where they do not), both added to each iteration.
+  void make_gravity_cost();
+  void make_motion_cost();
   void add_sensor_priors(ceres::Problem& problem, double* q, double* t);
   Eigen::Matrix<double, 6, 6> sensor_prior_normal_matrix() const;
 
@@ -305,6 +329,7 @@ struct SteppedMapMatch::State {
   std::unique_ptr<ceres::CostFunction> walls_cost;
   std::unique_ptr<ceres::CostFunction> motion_cost, gravity_cost;
   std::unique_ptr<ceres::LossFunction> motion_loss;
+  Matrix6d motion_information = Matrix6d::Zero();  // the part of the prior that is used
   Eigen::Matrix3d gravity_root = Eigen::Matrix3d::Zero();
   MapMatchResult result;
   int iteration = 0;
@@ -312,21 +337,33 @@ struct SteppedMapMatch::State {
   bool done = false;
 };
 
-void SteppedMapMatch::State::make_sensor_costs() {
+void SteppedMapMatch::State::make_motion_cost() {
+  if (!sensors.motion) return;
+  const double sigma = params.residual_sigma;
+  Eigen::Isometry3d placed = Eigen::Isometry3d::Identity();
+  placed.linear() = rotation.toRotationMatrix();
+  placed.translation() = translation;
+  result.lidar_observability =
+      observability(correspondence_information(matches, placed, params.huber_loss, sigma));
+  motion_information = on_degenerate_directions(
+      sensors.motion->information, *result.lidar_observability, params.degenerate_translation_sigma,
+      params.degenerate_rotation_sigma_deg * M_PI / 180.0);
+  if (motion_information.isZero()) return;
+  const Eigen::Isometry3d inverse =
+      (map.to_placement() * sensors.previous * sensors.motion->motion).inverse();
+  const Matrix6d root = sigma * information_root<6>(motion_information);
+  motion_cost.reset(new ceres::AutoDiffCostFunction<MotionPriorResidual, 6, 4, 3>(
+      new MotionPriorResidual{Eigen::Quaterniond(inverse.linear()), inverse.translation(), root}));
+  motion_loss.reset(new ceres::CauchyLoss(kPriorRobustSigmas * sigma));
+}
+
+void SteppedMapMatch::State::make_gravity_cost() {
   const double sigma = params.residual_sigma;
   const Eigen::Isometry3d placement = map.to_placement();
-  if (sensors.motion) {
-    const Eigen::Isometry3d inverse =
-        (placement * sensors.previous * sensors.motion->motion).inverse();
-    const Matrix6d root = sigma * information_root<6>(sensors.motion->information);
-    motion_cost.reset(new ceres::AutoDiffCostFunction<MotionPriorResidual, 6, 4, 3>(
-        new MotionPriorResidual{Eigen::Quaterniond(inverse.linear()), inverse.translation(),
-                                root}));
-    motion_loss.reset(new ceres::CauchyLoss(kPriorRobustSigmas * sigma));
-  }
   if (sensors.gravity) {
     const Eigen::Matrix3d covariance =
-        sensors.gravity->covariance + kGravityFloor * kGravityFloor * Eigen::Matrix3d::Identity();
+        sensors.gravity->covariance + std::pow(params.gravity_sigma_deg * M_PI / 180.0, 2) *
+                                          Eigen::Matrix3d::Identity();
     // Only across the measured up: along it a unit vector cannot err.
     const Eigen::Vector3d& up = sensors.gravity->up;
     const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - up * up.transpose();
@@ -356,7 +393,7 @@ Eigen::Matrix<double, 6, 6> SteppedMapMatch::State::sensor_prior_normal_matrix()
   to_body.topLeftCorner<3, 3>() = 2.0 * r.transpose();
   to_body.bottomRightCorner<3, 3>() = r.transpose();
   Matrix6d body = Matrix6d::Zero();
-  if (sensors.motion) body += sigma * sigma * sensors.motion->information;
+  if (motion_cost) body += sigma * sigma * motion_information;
   if (gravity_cost) {
     const Eigen::Vector3d seen = r.transpose() * (map.to_placement().linear() * sensors.map_up);
     const Eigen::Matrix3d j = gravity_root * skew(seen);
@@ -417,7 +454,10 @@ bool SteppedMapMatch::State::iterate() {
         placed_guess.linear() * prior->direction, placed_guess.translation(), prior->weight}));
     problem.AddResidualBlock(prior_cost.get(), nullptr, t);
   }
-  if (iteration == 0) find_degenerate_directions(problem, q, t);
+  if (iteration == 0) {
+    make_motion_cost();
+    find_degenerate_directions(problem, q, t);
+  }
   if (!sensors.empty()) add_sensor_priors(problem, q, t);
   const double q_before[4] = {q[0], q[1], q[2], q[3]};
   const double t_before[3] = {t[0], t[1], t[2]};
@@ -453,9 +493,7 @@ SteppedMapMatch::SteppedMapMatch(const MappingParams& params, const Cloud& corne
   // The vertical-structure prior, in the frame the map's points are in (the map frame's up moves
   // with it while placing again). Gravity, where an IMU gives it, holds the attitude instead.
   if (!state.done && !sensors.empty()) {
-    if (std::getenv("ALEGO_NO_MOTION_PRIOR")) state.sensors.motion.reset();
-    if (std::getenv("ALEGO_NO_GRAVITY_PRIOR")) state.sensors.gravity.reset();
-    state.make_sensor_costs();
+    state.make_gravity_cost();
   }
   if (!state.done && params.vertical_prior_weight > 0.0 && !wall_normals.empty() &&
       !sensors.gravity) {

@@ -32,8 +32,10 @@ constexpr double kWheelGate = 5.0;
 // Without an IMU: the speed a vehicle can change by in a scan interval before the wheel is
 // taken to slip (m/s per s), beyond three of the odometry's sigmas.
 constexpr double kMaxAcceleration = 5.0;
-// The LiDAR's forward distance teaches the wheel its scale only when known this well.
-constexpr double kScaleTeacherSigma = 0.02;  // m
+// The LiDAR's forward distance teaches the wheel its scale only when known this well; it is never
+// taken to know it better than the floor.
+constexpr double kScaleTeacherSigma = 0.1;  // m
+constexpr double kScaleTeacherFloor = 0.005;  // m
 constexpr double kSampleHistory = 1.0;       // s of samples kept before a scan
 
 bool finite(const Eigen::Vector3d& v) {
@@ -171,6 +173,10 @@ void MotionSensors::predict_with_filter(double stamp, double sweep_period) {
   status_.imu_in_use = true;
   status_.wheel_in_use =
       last_wheel_stamp_ > last_wheel_before && status_.wheel_slips == slips_before;
+  // The wheel's scale is learned as without the IMU.
+  if (status_.wheel_in_use) {
+    wheel_motion_ = integrate_wheel(wheel_samples_, *previous_stamp_, stamp, wheel_params_);
+  }
   if (recorded_.front().stamp <= stamp - sweep_period + 1e-9) {
     prediction_.sweep = sweep_motion(stamp, sweep_period);
   }
@@ -201,6 +207,15 @@ void MotionSensors::apply_wheel(const WheelOdometrySample& wheel, const Eigen::V
   const double side = std::pow(kSideSpeedSigma + kSideSpeedShare * speed, 2);
   const Eigen::Vector3d information(1.0 / along, 1.0 / side, 1.0 / side);
   const Eigen::Isometry3d imu_from_base = lidar_from_imu_.inverse() * lidar_from_base_;
+  if (std::getenv("ALEGO_DEBUG_WHEEL")) {
+    const Eigen::Vector3d rate = gyro - filter_.state().gyro_bias;
+    const Eigen::Vector3d body = filter_.state().rotation.transpose() * filter_.state().velocity;
+    const Eigen::Vector3d predicted = imu_from_base.linear().transpose() *
+                                      (body + rate.cross(imu_from_base.translation()));
+    std::fprintf(stderr, "WHEEL %.3f meas %.3f %.3f %.3f pred %.3f %.3f %.3f\n", wheel.stamp,
+                 measured.x(), measured.y(), measured.z(), predicted.x(), predicted.y(),
+                 predicted.z());
+  }
   if (!filter_.update_point_velocity(measured, information.asDiagonal(),
                                      imu_from_base.translation(), imu_from_base.linear(), gyro,
                                      kWheelGate)) {
@@ -327,7 +342,9 @@ void MotionSensors::update(const std::optional<Eigen::Isometry3d>& mapped_motion
   motions_in_a_row_ = lidar_motion ? motions_in_a_row_ + 1 : 0;
   const double dt = interval_start_ ? stamp_ - *interval_start_ : 0.0;
   if (lidar_motion && dt > 0.0) {
-    if (wheel_motion_) learn_wheel_scale(*lidar_motion, information);
+    if (wheel_motion_ && motions_in_a_row_ > kStartAfterMotions) {
+      learn_wheel_scale(*lidar_motion, information);
+    }
     const Eigen::Isometry3d base_motion =
         lidar_from_base_.inverse() * *lidar_motion * lidar_from_base_;
     lidar_speed_ = base_motion.translation().x() / dt;
@@ -392,13 +409,12 @@ void MotionSensors::learn_wheel_scale(const Eigen::Isometry3d& lidar_motion,
   // of that component.
   const Matrix6d to_lidar = adjoint(lidar_from_base_);
   const Matrix6d base_information = to_lidar.transpose() * information * to_lidar;
-  Eigen::SelfAdjointEigenSolver<Matrix6d> solver(base_information);
-  if (!(solver.eigenvalues()(0) > 0.0)) return;
   const double variance = symmetric_inverse(base_information)(3, 3);
   if (!(variance < kScaleTeacherSigma * kScaleTeacherSigma)) return;
   const Eigen::Isometry3d base_motion =
       lidar_from_base_.inverse() * lidar_motion * lidar_from_base_;
-  wheel_scale_.add(wheel_motion_->distance, base_motion.translation().x(), std::sqrt(variance));
+  wheel_scale_.add(wheel_motion_->distance, base_motion.translation().x(),
+                   std::max(std::sqrt(variance), kScaleTeacherFloor));
 }
 
 void MotionSensors::drop_old_samples(double before) {

@@ -17,6 +17,7 @@ constexpr double kMinDistanceSigma = 0.002;  // m
 constexpr double kScaleFloor = 0.002;        // the scale is never known better than this
 // The scale's drift per metre driven (its variance grows by this squared times the distance).
 constexpr double kScaleDriftPerMetre = 1e-4;
+constexpr double kScaleGate = 4.0;  // sigmas
 
 double variance_or(double reported, double sigma) {
   return reported > 0.0 && std::isfinite(reported) ? reported : sigma * sigma;
@@ -75,15 +76,18 @@ MotionPrior wheel_prior(const WheelMotion& wheel, double scale, double scale_sig
   return prior;
 }
 
-void WheelScale::add(double reported, double measured, double measured_sigma) {
+bool WheelScale::add(double reported, double measured, double measured_sigma) {
   variance_ += kScaleDriftPerMetre * kScaleDriftPerMetre * std::fabs(reported);
-  if (!(std::fabs(reported) > 1e-3) || !(measured_sigma > 0.0)) return;
-  // measured = scale * reported + noise.
+  if (!(std::fabs(reported) > 1e-3) || !(measured_sigma > 0.0)) return false;
+  // measured = scale * reported + noise; a measurement far off is a slip or a LiDAR gone wrong.
   const double innovation_variance =
       reported * reported * variance_ + measured_sigma * measured_sigma;
+  const double innovation = measured - scale_ * reported;
+  if (innovation * innovation > kScaleGate * kScaleGate * innovation_variance) return false;
   const double gain = variance_ * reported / innovation_variance;
-  scale_ += gain * (measured - scale_ * reported);
+  scale_ += gain * innovation;
   variance_ = std::max((1.0 - gain * reported) * variance_, kScaleFloor * kScaleFloor);
+  return true;
 }
 
 double WheelScale::sigma() const {

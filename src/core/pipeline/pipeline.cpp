@@ -1,5 +1,8 @@
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 namespace adaptive_lego_loam {
 
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
@@ -44,6 +47,19 @@ const FrameResult& Pipeline::process(const Scan& scan) {
     Stopwatch watch;
     const MotionPrediction& prediction = motion_.predict(scan.stamp, config_.sensor.scan_period);
     if (!prediction.empty()) sensors = &prediction;
+    static std::FILE* dump = std::getenv("ALEGO_DUMP_PRIOR")
+                                 ? std::fopen(std::getenv("ALEGO_DUMP_PRIOR"), "w")
+                                 : nullptr;
+    if (dump && prediction.motion) {
+      const Eigen::Isometry3d& m = prediction.motion->motion;
+      std::fprintf(dump, "%d", result_.frame);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j) std::fprintf(dump, " %.9g", m.matrix()(i, j));
+      for (int i = 0; i < 36; ++i)
+        std::fprintf(dump, " %.9g", prediction.motion->information(i / 6, i % 6));
+      std::fprintf(dump, "\n");
+      std::fflush(dump);
+    }
     result_.times.add("motion_sensors", watch.lap_ms());
     result_.imu_used = motion_.status().imu_in_use;
     result_.wheel_used = motion_.status().wheel_in_use;

@@ -111,6 +111,22 @@ TEST(MotionSensors, MountedImuPredictsTheLidarsMotionSweepAndGravity) {
   EXPECT_TRUE(sensors.status().imu_in_use);
 }
 
+TEST(MotionSensors, WheelVelocitiesInTheImusFilterAgreeWithIt) {
+  Drive d;
+  d.lidar = constant_turn(12.0, 0.35);
+  d.wheel = true;
+  MotionSensors sensors(d.config);
+  drive(d, sensors, 40, [&](int scan, const MotionPrediction& prediction) {
+    if (scan < 5) return;
+    ASSERT_TRUE(prediction.motion) << scan;
+    const double stamp = scan * kPeriod;
+    const Eigen::Isometry3d truth = d.lidar(stamp - kPeriod).inverse() * d.lidar(stamp);
+    EXPECT_LT(translation_error(prediction.motion->motion, truth), 0.01) << scan;
+  });
+  EXPECT_EQ(sensors.status().wheel_slips, 0);
+  EXPECT_GT(sensors.status().wheel_scans, 30);
+}
+
 TEST(MotionSensors, BadSamplesAreCountedAndAGapFallsBackToLidarOnlyThenRecovers) {
   Drive d;
   d.lidar = constant_turn(10.0, 0.1);

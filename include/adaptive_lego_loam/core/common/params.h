@@ -183,8 +183,16 @@ struct MappingParams {
   double keyframe_merge_radius = 20.0;
   double degeneracy_eigenvalue = 100;  // LOAM's threshold on the normal equations' eigenvalues
   // The 1-sigma error of a scan-to-map residual (m): the information the match publishes, and
-  // how the motion sensors' priors weigh against the LiDAR's correspondences.
+  // how the motion sensors' priors weigh against the LiDAR's correspondences. Larger than the
+  // range noise: neighbouring correspondences share their map points and their errors.
   double residual_sigma = 0.05;
+  // A direction of the motion the correspondences fix no better than this (1 sigma, the other
+  // block marginalised) is degenerate: the motion sensors' prior holds it.
+  double degenerate_translation_sigma = 0.1;   // m
+  double degenerate_rotation_sigma_deg = 1.0;  // deg
+  // Gravity, from an IMU on a moving vehicle, is trusted no better than this (deg): until it
+  // turns, an accelerometer's bias cannot be told from a tilt.
+  double gravity_sigma_deg = 0.5;
   // Weight of a prior pulling the translation along the ambient filter's weak direction toward
   // the odometry's prediction, times mu; 0 turns it off.
   double weak_direction_prior = 0.0;

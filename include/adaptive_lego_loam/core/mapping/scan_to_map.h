@@ -12,6 +12,7 @@
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/core/mapping/local_map.h"
 #include "adaptive_lego_loam/core/motion_sensors/motion_prediction.h"
+#include "adaptive_lego_loam/core/odometry/observability.h"
 
 namespace adaptive_lego_loam {
 
@@ -28,6 +29,9 @@ struct MapMatchResult {
   // correspondences at the result, with MappingParams::residual_sigma. Zero when not matched.
   Matrix6d information = Matrix6d::Zero();
   bool motion_prior = false;  // the motion sensors' motion prior took part
+  // How well the first iteration's correspondences fixed each direction (with residual_sigma),
+  // when the motion sensors' prior was offered: it holds the directions they leave open.
+  std::optional<Observability> lidar_observability;
 };
 
 // The motion sensors' priors on a scan's pose (core/motion_sensors/): its motion since the

@@ -43,8 +43,9 @@ class WheelScale {
  public:
   // Starts at 1 with `sigma` (the 1-3 % a wheel odometry is off by).
   explicit WheelScale(double sigma = 0.03) : variance_(sigma * sigma) {}
-  // An interval of `reported` m in which the LiDAR measured `measured` m to `measured_sigma`.
-  void add(double reported, double measured, double measured_sigma);
+  // An interval of `reported` m in which the LiDAR measured `measured` m to `measured_sigma`;
+  // false when it is too far from the scale to be one (a slip, a LiDAR gone wrong): not used.
+  bool add(double reported, double measured, double measured_sigma);
   double scale() const { return scale_; }
   double sigma() const;
 
