@@ -45,7 +45,8 @@ const std::vector<std::string> kStages = {
     "loop_closure"};
 
 struct Options {
-  std::string config, input, topic, output;
+  std::vector<std::string> config;
+  std::string input, topic, output;
   double beta0 = -1.0;
   bool adaptive = false;
   bool no_segmentation = false;
@@ -66,7 +67,8 @@ class MotionSensorFeed {
   MotionSensorFeed(const Options& options, const Config& config)
       : imu_offset_(config.imu.time_offset_s), wheel_offset_(config.wheel_odometry.time_offset_s) {
     if (!options.imu.empty()) imu_ = read_imu_csv(options.imu);
-    if (!options.imu_topic.empty()) imu_ = ros_bridge::read_bag_imu(options.input, options.imu_topic);
+    if (!options.imu_topic.empty())
+      imu_ = ros_bridge::read_bag_imu(options.input, options.imu_topic);
     if (!options.wheel_odom.empty()) wheel_ = read_wheel_odometry_csv(options.wheel_odom);
     if (!options.wheel_odom_topic.empty()) {
       wheel_ = ros_bridge::read_bag_wheel_odometry(options.input, options.wheel_odom_topic);
@@ -387,7 +389,7 @@ int run(const Options& options) {
                         ? std::min(options.max_frames, sequence->size())
                         : sequence->size();
   std::fprintf(stderr, "run_sequence: %s%s, config %s, %s\n", sequence->describe().c_str(),
-               motion_sensors.describe().c_str(), options.config.c_str(),
+               motion_sensors.describe().c_str(), config.source.c_str(),
                describe_segmentation(config.ambient).c_str());
   ProgressBar progress("run_sequence", total);
   HeapTrimmer heap_trimmer;
@@ -414,15 +416,6 @@ int run(const Options& options) {
       last_stamp = scan->stamp;
       motion_sensors.feed_until(scan->stamp, *pipeline);
       const FrameResult& result = pipeline->process(*scan);
-      static std::FILE* dump = std::getenv("ALEGO_DUMP_INFO")
-                                   ? std::fopen(std::getenv("ALEGO_DUMP_INFO"), "w")
-                                   : nullptr;
-      if (dump) {
-        std::fprintf(dump, "%d %d", result.frame, int(result.mapping.matched));
-        for (int i = 0; i < 36; ++i) std::fprintf(dump, " %.9g", result.mapping.information(i / 6, i % 6));
-        std::fprintf(dump, " %d %d\n", result.mapping.edge_matches, result.mapping.plane_matches);
-        std::fflush(dump);
-      }
       heap_trimmer.after_scan();
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
@@ -458,8 +451,8 @@ int run(const Options& options) {
   // The map first: when it cannot be saved, no output of this run takes the place of an earlier
   // one's. The files follow together once all are written.
   if (!options.save_map.empty()) {
-    const MapDescription description{fs::absolute(options.config).string(), config.sensor.name,
-                                     "run_sequence", frames};
+    const MapDescription description{fs::absolute(options.config.front()).string(),
+                                     config.sensor.name, "run_sequence", frames};
     save_map(options.save_map, pipeline->keyframes(), description, config);
     std::fprintf(stderr, "run_sequence: map saved in %s\n", options.save_map.c_str());
   }
@@ -545,7 +538,10 @@ int main(int argc, char** argv) {
       "degeneration.csv, loops.csv and summary.json to the output folder, each put in place only "
       "when the run succeeds."};
   Options options;
-  app.add_option("--config", options.config, "sensor config (config/*.yaml)")->required();
+  app.add_option("--config", options.config,
+                 "sensor config (config/*.yaml); more files (--config A --config B) replace "
+                 "the keys of the earlier ones, e.g. a simulated drive's sensors.yaml")
+      ->required();
   app.add_option("--input", options.input, "KITTI sequence folder, scan folder or .bag")
       ->required();
   app.add_option("--topic", options.topic, "PointCloud2 topic in a bag (default: its only one)");

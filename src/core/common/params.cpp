@@ -450,7 +450,9 @@ void validate(const SensorParams& s, const std::string& source) {
   }
 }
 
-Config parse_config(const std::string& yaml_text, const std::string& source) {
+namespace {
+
+YAML::Node parse_sections(const std::string& yaml_text, const std::string& source) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
@@ -459,7 +461,53 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
   }
   if (!root || root.IsNull()) throw ConfigError(source + ": empty config");
   if (!root.IsMap()) throw ConfigError(source + ": expected a mapping of sections");
+  return root;
+}
 
+std::string read_text(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw ConfigError(path + ": cannot open config file");
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+Config config_from(const YAML::Node& root, const std::string& source);
+
+}  // namespace
+
+Config parse_config(const std::string& yaml_text, const std::string& source) {
+  return config_from(parse_sections(yaml_text, source), source);
+}
+
+Config load_config(const std::string& path) {
+  return parse_config(read_text(path), path);
+}
+
+Config load_config(const std::vector<std::string>& paths) {
+  if (paths.empty()) throw ConfigError("no config file given");
+  YAML::Node merged = parse_sections(read_text(paths.front()), paths.front());
+  std::string source = paths.front();
+  for (std::size_t i = 1; i < paths.size(); ++i) {
+    const YAML::Node overlay = parse_sections(read_text(paths[i]), paths[i]);
+    for (const auto& section : overlay) {
+      const std::string name = key_name(section.first, paths[i], "(top level)");
+      if (!section.second.IsMap() || !merged[name] || !merged[name].IsMap()) {
+        merged[name] = section.second;
+        continue;
+      }
+      YAML::Node target = merged[name];
+      for (const auto& entry : section.second)
+        target[key_name(entry.first, paths[i], name)] = entry.second;
+    }
+    source += " + " + paths[i];
+  }
+  return config_from(merged, source);
+}
+
+namespace {
+
+Config config_from(const YAML::Node& root, const std::string& source) {
   Config config;
   config.source = source;
   const YAML::Node& sections = root;  // const: looking a section up must not create it
@@ -502,12 +550,6 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
   return config;
 }
 
-Config load_config(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw ConfigError(path + ": cannot open config file");
-  std::stringstream text;
-  text << file.rdbuf();
-  return parse_config(text.str(), path);
-}
+}  // namespace
 
 }  // namespace adaptive_lego_loam

@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <vector>
@@ -132,7 +133,6 @@ Matrix6d on_degenerate_directions(const Matrix6d& prior, const Observability& se
 // A prior is trusted up to about this many of its sigmas, then its pull fades (a slipping wheel,
 // an IMU after a knock).
 constexpr double kPriorRobustSigmas = 5.0;
-
 
 // Each patch weighs by Tukey's biweight of its tilt from vertical at the guess, nothing at
 // max_tilt_deg: a steep slope (an embankment, a battered retaining wall) that the guess shows
@@ -362,14 +362,13 @@ void SteppedMapMatch::State::make_gravity_cost() {
   const Eigen::Isometry3d placement = map.to_placement();
   if (sensors.gravity) {
     const Eigen::Matrix3d covariance =
-        sensors.gravity->covariance + std::pow(params.gravity_sigma_deg * M_PI / 180.0, 2) *
-                                          Eigen::Matrix3d::Identity();
+        sensors.gravity->covariance +
+        std::pow(params.gravity_sigma_deg * M_PI / 180.0, 2) * Eigen::Matrix3d::Identity();
     // Only across the measured up: along it a unit vector cannot err.
     const Eigen::Vector3d& up = sensors.gravity->up;
     const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - up * up.transpose();
-    gravity_root = sigma * information_root<3>(across *
-                                               pseudo_inverse<3>(across * covariance * across) *
-                                               across);
+    gravity_root = sigma * information_root<3>(
+                               across * pseudo_inverse<3>(across * covariance * across) * across);
     gravity_cost.reset(new ceres::AutoDiffCostFunction<GravityResidual, 3, 4>(
         new GravityResidual{placement.linear() * sensors.map_up, up, gravity_root}));
   }
@@ -523,9 +522,8 @@ MapMatchResult SteppedMapMatch::result() const {
     placed_pose.linear() = state.rotation.toRotationMatrix();
     placed_pose.translation() = state.translation;
     result.pose = state.map.to_placement().inverse() * placed_pose;
-    result.information = correspondence_information(state.matches, placed_pose,
-                                                     state.params.huber_loss,
-                                                     state.params.residual_sigma);
+    result.information = correspondence_information(
+        state.matches, placed_pose, state.params.huber_loss, state.params.residual_sigma);
   }
   return result;
 }

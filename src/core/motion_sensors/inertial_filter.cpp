@@ -194,15 +194,16 @@ bool InertialFilter::update_point_velocity(const Eigen::Vector3d& measured,
                                            const Eigen::Matrix3d& information,
                                            const Eigen::Vector3d& lever_arm,
                                            const Eigen::Matrix3d& frame_rotation,
-                                           const Eigen::Vector3d& gyro, double gate) {
-  const Eigen::Vector3d rate = gyro - state_.gyro_bias;
+                                           const Eigen::Vector3d& gyro,
+                                           const Eigen::Matrix3d& turn_axes, double gate) {
+  const Eigen::Vector3d rate = turn_axes * (gyro - state_.gyro_bias);
   const Eigen::Vector3d body_velocity = state_.rotation.transpose() * state_.velocity;
   const Eigen::Vector3d predicted =
       frame_rotation.transpose() * (body_velocity + rate.cross(lever_arm));
   Eigen::Matrix<double, 3, kSize> jacobian = Eigen::Matrix<double, 3, kSize>::Zero();
   jacobian.block<3, 3>(0, kVelocity) = frame_rotation.transpose() * state_.rotation.transpose();
   jacobian.block<3, 3>(0, kAttitude) = frame_rotation.transpose() * skew(body_velocity);
-  jacobian.block<3, 3>(0, kGyroBias) = frame_rotation.transpose() * skew(lever_arm);
+  jacobian.block<3, 3>(0, kGyroBias) = frame_rotation.transpose() * skew(lever_arm) * turn_axes;
   return correct<3>(measured - predicted, jacobian, information, gate);
 }
 

@@ -15,7 +15,7 @@ namespace {
 // The filter starts level by the mean specific force over this long before a scan.
 constexpr double kLevellingWindow = 0.2;  // s
 // Its velocity at the start: the LiDAR's last motion, to this; with none yet, unknown.
-constexpr double kStartVelocitySigma = 2.0;     // m/s
+constexpr double kStartVelocitySigma = 2.0;  // m/s
 // The filter starts after this many mapped motions in a row: the first pair of scans is
 // registered from a search and the first sweep is not de-skewed.
 constexpr int kStartAfterMotions = 3;
@@ -34,9 +34,9 @@ constexpr double kWheelGate = 5.0;
 constexpr double kMaxAcceleration = 5.0;
 // The LiDAR's forward distance teaches the wheel its scale only when known this well; it is never
 // taken to know it better than the floor.
-constexpr double kScaleTeacherSigma = 0.1;  // m
+constexpr double kScaleTeacherSigma = 0.1;    // m
 constexpr double kScaleTeacherFloor = 0.005;  // m
-constexpr double kSampleHistory = 1.0;       // s of samples kept before a scan
+constexpr double kSampleHistory = 1.0;        // s of samples kept before a scan
 
 bool finite(const Eigen::Vector3d& v) {
   return v.allFinite();
@@ -48,41 +48,6 @@ Eigen::Matrix<double, 6, 6> right_perturbation_jacobian(const Eigen::Isometry3d&
   Eigen::Matrix<double, 6, 6> jacobian = Eigen::Matrix<double, 6, 6>::Identity();
   jacobian.bottomRightCorner<3, 3>() = motion.linear().transpose();
   return jacobian;
-}
-
-Matrix6d symmetric_inverse(const Matrix6d& m);
-
-// The motion the LiDAR alone measured, from the mapped motion that weighed a prior in: with the
-// prior's information P and the LiDAR's L, the mapped xi_f (about the prior's motion) is
-// (P + L)^-1 L xi_l, so xi_l = L^+ (P + L) xi_f where the LiDAR measured anything.
-Eigen::Isometry3d lidar_only_motion(const Eigen::Isometry3d& mapped, const MotionPrior& prior,
-                                    const Matrix6d& lidar_information) {
-  const Eigen::Isometry3d offset = prior.motion.inverse() * mapped;
-  Eigen::Matrix<double, 6, 1> fused;
-  fused.head<3>() = rotation_log(offset.linear());
-  fused.tail<3>() = offset.translation();
-  const Eigen::Matrix<double, 6, 1> alone =
-      symmetric_inverse(lidar_information) * (prior.information + lidar_information) * fused;
-  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-  step.linear() = rotation_exp(alone.head<3>());
-  step.translation() = alone.tail<3>();
-  return prior.motion * step;
-}
-
-// The LiDAR's information where it outweighs the prior tenfold: there the mapped motion is the
-// LiDAR's to within a tenth; elsewhere it is the prior's own, and must not be fed back.
-Matrix6d lidar_dominant_information(const Matrix6d& lidar, const Matrix6d& prior) {
-  Eigen::SelfAdjointEigenSolver<Matrix6d> prior_solver(prior + 1e-9 * Matrix6d::Identity());
-  const Matrix6d root = prior_solver.operatorSqrt();
-  const Matrix6d root_inverse = prior_solver.operatorInverseSqrt();
-  Eigen::SelfAdjointEigenSolver<Matrix6d> solver(root_inverse * lidar * root_inverse);
-  Matrix6d kept = Matrix6d::Zero();
-  for (int k = 0; k < 6; ++k) {
-    if (solver.eigenvalues()(k) < 10.0) continue;
-    const Eigen::Matrix<double, 6, 1> v = solver.eigenvectors().col(k);
-    kept += solver.eigenvalues()(k) * v * v.transpose();
-  }
-  return root * kept * root;
 }
 
 Matrix6d symmetric_inverse(const Matrix6d& m) {
@@ -205,34 +170,36 @@ void MotionSensors::apply_wheel(const WheelOdometrySample& wheel, const Eigen::V
                               : wheel_params_.speed_sigma * wheel_params_.speed_sigma;
   const double along = scale * scale * reported + std::pow(wheel_scale_.sigma() * speed, 2);
   const double side = std::pow(kSideSpeedSigma + kSideSpeedShare * speed, 2);
-  const Eigen::Vector3d information(1.0 / along, 1.0 / side, 1.0 / side);
+  // Forward and sideways: the base does not slide sideways; up and down it moves with the body on
+  // its suspension, which the wheels do not see.
+  const Eigen::Vector3d information(1.0 / along, 1.0 / side, 0.0);
   const Eigen::Isometry3d imu_from_base = lidar_from_imu_.inverse() * lidar_from_base_;
-  if (std::getenv("ALEGO_DEBUG_WHEEL")) {
-    const Eigen::Vector3d rate = gyro - filter_.state().gyro_bias;
-    const Eigen::Vector3d body = filter_.state().rotation.transpose() * filter_.state().velocity;
-    const Eigen::Vector3d predicted = imu_from_base.linear().transpose() *
-                                      (body + rate.cross(imu_from_base.translation()));
-    std::fprintf(stderr, "WHEEL %.3f meas %.3f %.3f %.3f pred %.3f %.3f %.3f\n", wheel.stamp,
-                 measured.x(), measured.y(), measured.z(), predicted.x(), predicted.y(),
-                 predicted.z());
-  }
+  // The base turns with the body about its vertical only: roll and pitch are the body's own.
+  const Eigen::Vector3d base_up = imu_from_base.linear().col(2);
+  const Eigen::Matrix3d yaw_only = base_up * base_up.transpose();
   if (!filter_.update_point_velocity(measured, information.asDiagonal(),
                                      imu_from_base.translation(), imu_from_base.linear(), gyro,
-                                     kWheelGate)) {
+                                     yaw_only, kWheelGate)) {
     ++status_.wheel_slips;
   }
 }
 
 void MotionSensors::propagate_to(double stamp) {
+  // One step of the filter, its motion added to the recorded path.
+  const auto step = [&](double until, const Eigen::Vector3d& gyro, const Eigen::Vector3d& accel) {
+    const Eigen::Isometry3d before = filter_.state().pose();
+    filter_.propagate(until, gyro, accel);
+    path_ = path_ * (before.inverse() * filter_.state().pose());
+  };
   auto integrate = [&](double until, const Eigen::Vector3d& gyro, const Eigen::Vector3d& accel) {
     // Wheel velocities measured before `until` correct the state where they were measured.
     for (const WheelOdometrySample& wheel : wheel_samples_) {
       if (wheel.stamp <= last_wheel_stamp_ || wheel.stamp <= filter_.state().stamp) continue;
       if (wheel.stamp > until) break;
-      filter_.propagate(wheel.stamp, gyro, accel);
+      step(wheel.stamp, gyro, accel);
       apply_wheel(wheel, gyro);
     }
-    filter_.propagate(until, gyro, accel);
+    step(until, gyro, accel);
     record_pose();
   };
   for (const ImuSample& sample : imu_samples_) {
@@ -251,7 +218,7 @@ void MotionSensors::propagate_to(double stamp) {
 }
 
 void MotionSensors::record_pose() {
-  recorded_.push_back({filter_.state().stamp, filter_.state().pose()});
+  recorded_.push_back({filter_.state().stamp, path_});
 }
 
 Eigen::Isometry3d MotionSensors::recorded_pose(double stamp) const {
@@ -300,25 +267,16 @@ void MotionSensors::predict_with_wheel(double stamp) {
 }
 
 void MotionSensors::update(const std::optional<Eigen::Isometry3d>& mapped_motion,
-                           const Matrix6d& information, bool prior_used) {
+                           const Matrix6d& information) {
   if (!active()) return;
-  std::optional<Eigen::Isometry3d> lidar_motion = mapped_motion;
-  Matrix6d lidar_information = information;
-  const char* mode = std::getenv("ALEGO_FEEDBACK");
-  if (mapped_motion && prior_used && prediction_.motion && mode) {
-    if (std::string(mode) == "defuse") {
-      lidar_motion = lidar_only_motion(*mapped_motion, *prediction_.motion, information);
-    } else if (std::string(mode) == "dominant") {
-      lidar_information = lidar_dominant_information(information, prediction_.motion->information);
-    }
-  }
+  const std::optional<Eigen::Isometry3d>& lidar_motion = mapped_motion;
   if (status_.imu_in_use) {
     if (lidar_motion) {
       const Eigen::Isometry3d imu_motion =
           lidar_from_imu_.inverse() * *lidar_motion * lidar_from_imu_;
       const Matrix6d to_lidar = adjoint(lidar_from_imu_);
       const Eigen::Matrix<double, 6, 6> to_right = right_perturbation_jacobian(imu_motion);
-      const Matrix6d imu_information = to_lidar.transpose() * lidar_information * to_lidar;
+      const Matrix6d imu_information = to_lidar.transpose() * information * to_lidar;
       if (filter_.update_motion(imu_motion, to_right.transpose() * imu_information * to_right,
                                 kLidarGate)) {
         refusals_in_a_row_ = 0;
@@ -350,15 +308,6 @@ void MotionSensors::update(const std::optional<Eigen::Isometry3d>& mapped_motion
     lidar_speed_ = base_motion.translation().x() / dt;
   } else {
     lidar_speed_.reset();
-  }
-  if (std::getenv("ALEGO_DEBUG_FILTER") && filter_.initialized()) {
-    const Eigen::Vector3d up = lidar_from_imu_.linear() * filter_.up_in_imu();
-    const Eigen::Vector3d v = filter_.state().rotation.transpose() * filter_.state().velocity;
-    std::fprintf(stderr, "FILT %.2f up %.4f %.4f %.4f ba %.4f %.4f %.4f bg %.5f %.5f %.5f v %.3f %.3f %.3f lid %d\n",
-                 stamp_, up.x(), up.y(), up.z(), filter_.state().accel_bias.x(),
-                 filter_.state().accel_bias.y(), filter_.state().accel_bias.z(),
-                 filter_.state().gyro_bias.x(), filter_.state().gyro_bias.y(),
-                 filter_.state().gyro_bias.z(), v.x(), v.y(), v.z(), lidar_motion.has_value());
   }
   status_.gyro_bias = filter_.state().gyro_bias;
   status_.accel_bias = filter_.state().accel_bias;
@@ -399,6 +348,7 @@ void MotionSensors::start_filter(const Eigen::Isometry3d& lidar_motion) {
   if (!recorded_.empty()) ++status_.imu_restarts;
   filter_.initialize(stamp_, gravity, velocity, velocity_sigma);
   recorded_.clear();
+  path_ = filter_.state().pose();
   record_pose();
   last_wheel_stamp_ = std::max(last_wheel_stamp_, stamp_);
 }

@@ -12,7 +12,8 @@ constexpr double kFree = 1e-8;
 
 void principal(const Eigen::Matrix3d& covariance, Eigen::Vector3d& sigma,
                Eigen::Matrix3d& directions) {
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(0.5 * (covariance + covariance.transpose()));
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(0.5 *
+                                                        (covariance + covariance.transpose()));
   // Ascending variance: take the columns from the last, largest sigma first.
   for (int k = 0; k < 3; ++k) {
     const double variance = solver.eigenvalues()(2 - k);

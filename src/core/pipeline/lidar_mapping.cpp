@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -314,15 +312,6 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
       out.localization && out.localization->alignment && out.localization->alignment->accepted();
   pose_ = pose;
   if (sensors && sensors->gravity) map_gravity_.add(pose_.linear(), *sensors->gravity);
-  if (std::getenv("ALEGO_DEBUG_GRAVITY") && sensors && sensors->gravity && map_gravity_.up()) {
-    const Eigen::Vector3d seen = pose_.linear().transpose() * *map_gravity_.up();
-    const Eigen::Vector3d truth_up = sensors->gravity->up;
-    std::fprintf(stderr, "GRAV %d %.5f %.5f  sig %.5f up %.4f %.4f %.4f\n", scans_,
-                 std::atan2(seen.cross(truth_up).norm(), seen.dot(truth_up)) * 180 / M_PI,
-                 (seen - truth_up).y() * 180 / M_PI,
-                 std::sqrt(sensors->gravity->covariance.trace()) * 180 / M_PI, truth_up.x(),
-                 truth_up.y(), truth_up.z());
-  }
   // The velocity exists once two scans have been mapped (an alignment's jump is not motion).
   if (scans_ >= 1) last_mapped_motion_ = aligned ? motion : previous_pose.inverse() * pose_;
   fusion_.update_mapping(odometry_pose, pose_);

@@ -1,8 +1,5 @@
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
 
-#include <cstdio>
-#include <cstdlib>
-
 namespace adaptive_lego_loam {
 
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
@@ -47,19 +44,6 @@ const FrameResult& Pipeline::process(const Scan& scan) {
     Stopwatch watch;
     const MotionPrediction& prediction = motion_.predict(scan.stamp, config_.sensor.scan_period);
     if (!prediction.empty()) sensors = &prediction;
-    static std::FILE* dump = std::getenv("ALEGO_DUMP_PRIOR")
-                                 ? std::fopen(std::getenv("ALEGO_DUMP_PRIOR"), "w")
-                                 : nullptr;
-    if (dump && prediction.motion) {
-      const Eigen::Isometry3d& m = prediction.motion->motion;
-      std::fprintf(dump, "%d", result_.frame);
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 4; ++j) std::fprintf(dump, " %.9g", m.matrix()(i, j));
-      for (int i = 0; i < 36; ++i)
-        std::fprintf(dump, " %.9g", prediction.motion->information(i / 6, i % 6));
-      std::fprintf(dump, "\n");
-      std::fflush(dump);
-    }
     result_.times.add("motion_sensors", watch.lap_ms());
     result_.imu_used = motion_.status().imu_in_use;
     result_.wheel_used = motion_.status().wheel_in_use;
@@ -82,8 +66,7 @@ const FrameResult& Pipeline::process(const Scan& scan) {
     Stopwatch watch;
     // What the LiDAR saw of this scan's motion teaches the sensors (biases, scale, velocity).
     const bool mapped = mapping_out_.match.matched && mapping_out_.motion;
-    motion_.update(mapped ? mapping_out_.motion : std::nullopt, mapping_out_.match.information,
-                   mapping_out_.match.motion_prior);
+    motion_.update(mapped ? mapping_out_.motion : std::nullopt, mapping_out_.match.information);
     result_.times.add("motion_sensors", watch.lap_ms());
   }
   if (uses_mapped_motion(config_.odometry, config_.mapping) && mapping_out_.motion) {

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <string>
 
 #include "adaptive_lego_loam/core/common/params.h"
@@ -211,4 +212,21 @@ TEST(Params, MotionSensorSectionsAreOptionalAndChecked) {
       << error;
   error = error_of(std::string(kMinimal) + "wheel_odometry:\n  scale: 1.02\n");
   EXPECT_NE(error.find("wheel_odometry.scale: is not a known key"), std::string::npos) << error;
+}
+
+TEST(Params, LaterFilesReplaceKeysOfEarlierOnes) {
+  const std::string base = std::string(CONFIG_DIR) + "/vlp16.yaml";
+  const std::string overlay = ::testing::TempDir() + "/alego_overlay.yaml";
+  {
+    std::ofstream file(overlay);
+    file << "imu:\n  extrinsic_xyz_m: [0.1, 0.2, 0.3]\nmapping:\n  residual_sigma: 0.7\n";
+  }
+  const Config merged = load_config(std::vector<std::string>{base, overlay});
+  EXPECT_EQ(merged.imu.extrinsic_xyz_m, std::vector<double>({0.1, 0.2, 0.3}));
+  EXPECT_DOUBLE_EQ(merged.mapping.residual_sigma, 0.7);
+  // The rest of each section stays the first file's.
+  const Config plain = load_config(base);
+  EXPECT_EQ(merged.mapping.max_iterations, plain.mapping.max_iterations);
+  EXPECT_DOUBLE_EQ(merged.imu.gyro_noise_density, plain.imu.gyro_noise_density);
+  EXPECT_NE(merged.source.find(" + "), std::string::npos);
 }

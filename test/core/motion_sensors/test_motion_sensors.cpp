@@ -54,10 +54,9 @@ void drive(const Drive& d, MotionSensors& sensors, int scans,
     const MotionPrediction& prediction = sensors.predict(stamp, kPeriod);
     check(scan, prediction);
     if (scan == 0) {
-      sensors.update(std::nullopt, Matrix6d::Zero(), false);
+      sensors.update(std::nullopt, Matrix6d::Zero());
     } else {
-      sensors.update(d.lidar(stamp - kPeriod).inverse() * d.lidar(stamp), exact_information(),
-                     false);
+      sensors.update(d.lidar(stamp - kPeriod).inverse() * d.lidar(stamp), exact_information());
     }
   }
 }
@@ -76,7 +75,7 @@ TEST(MotionSensors, WithoutSamplesItPredictsNothing) {
   MotionSensors sensors(mounted_config());
   EXPECT_FALSE(sensors.active());
   EXPECT_TRUE(sensors.predict(0.1, kPeriod).empty());
-  sensors.update(Eigen::Isometry3d::Identity(), exact_information(), false);
+  sensors.update(Eigen::Isometry3d::Identity(), exact_information());
   EXPECT_TRUE(sensors.predict(0.2, kPeriod).empty());
 }
 
@@ -168,10 +167,9 @@ TEST(MotionSensors, WheelOdometryAloneGivesTheMotionAndLearnsItsScale) {
       EXPECT_FALSE(prediction.sweep);
     }
     if (scan == 0) {
-      sensors.update(std::nullopt, Matrix6d::Zero(), false);
+      sensors.update(std::nullopt, Matrix6d::Zero());
     } else {
-      sensors.update(d.lidar(stamp - kPeriod).inverse() * d.lidar(stamp), exact_information(),
-                     false);
+      sensors.update(d.lidar(stamp - kPeriod).inverse() * d.lidar(stamp), exact_information());
     }
   }
   EXPECT_NEAR(sensors.status().wheel_scale, 1.0 / 1.03, 0.002);

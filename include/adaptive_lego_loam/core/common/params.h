@@ -211,8 +211,8 @@ struct MappingParams {
 };
 
 // An optional IMU (core/motion_sensors/): used only when a run is given its samples. Noise
-// densities and bias random walks are continuous-time values (docs/SENSORS.md names the
-// datasheet the defaults come from).
+// densities and bias random walks are continuous-time values; the defaults are an Analog
+// Devices ADIS16448's (docs/SENSORS.md).
 struct ImuParams {
   // The IMU's pose in the LiDAR frame (the transform lidar -> imu): roll, pitch, yaw (deg, applied
   // as R = Rz(yaw) Ry(pitch) Rx(roll)) and translation (m). A node takes it from TF when a static
@@ -225,9 +225,9 @@ struct ImuParams {
   double gyro_bias_random_walk = 2.0e-5;   // rad/s^2/sqrt(Hz)
   double accel_bias_random_walk = 3.0e-3;  // m/s^3/sqrt(Hz)
   // 1-sigma of the biases at start-up (before the filter has seen any motion).
-  double gyro_bias_sigma = 0.005;  // rad/s
-  double accel_bias_sigma = 0.1;   // m/s^2
-  double gravity = 9.81;           // m/s^2
+  double gyro_bias_sigma = 8.7e-3;  // rad/s
+  double accel_bias_sigma = 0.196;  // m/s^2
+  double gravity = 9.81;            // m/s^2
   // Samples further apart than this leave a gap: the scans it touches fall back to LiDAR-only.
   double max_gap_s = 0.05;
   // Samples beyond these are not a vehicle's motion but a fault: dropped and counted.
@@ -243,11 +243,11 @@ struct WheelOdometryParams {
   std::vector<double> extrinsic_xyz_m{0.0, 0.0, 0.0};
   double time_offset_s = 0.0;
   // 1-sigma errors when a message reports no variance.
-  double speed_sigma = 0.05;        // m/s
-  double yaw_rate_sigma_deg = 1.0;  // deg/s
-  double max_gap_s = 0.2;           // s
-  double max_speed = 70.0;          // m/s: faster is a fault, dropped and counted
-  double max_yaw_rate_deg = 360.0;  // deg/s
+  double speed_sigma = 0.05;         // m/s
+  double yaw_rate_sigma_deg = 1.15;  // deg/s
+  double max_gap_s = 0.2;            // s
+  double max_speed = 70.0;           // m/s: faster is a fault, dropped and counted
+  double max_yaw_rate_deg = 360.0;   // deg/s
 };
 
 // Robust loss on a pose-graph edge's whitened residual norm |r| (in sigmas). kHuber: quadratic up
@@ -389,6 +389,9 @@ struct Config {
 // Loads and checks a config file. Throws ConfigError naming the file, the key and the allowed
 // range on the first bad value; unknown keys are errors too (a typo must not pass silently).
 Config load_config(const std::string& path);
+// Several files, each later one's keys replacing the earlier ones' (a sensor's config, then a
+// robot's extrinsics): section by section, key by key.
+Config load_config(const std::vector<std::string>& paths);
 // The same from YAML text; `source` names it in messages.
 Config parse_config(const std::string& yaml_text, const std::string& source);
 

@@ -58,14 +58,16 @@ class InertialFilter {
   // Mahalanobis distance beyond `gate` sigmas in the measured directions).
   bool update_motion(const Eigen::Isometry3d& measured, const Matrix6d& information,
                      double gate = 0.0);
-  // Corrects the state with the measured velocity of a point rigidly attached to the IMU (at
-  // `lever_arm`, IMU frame), expressed in a frame of orientation `frame_rotation` relative to the
-  // IMU (the wheel odometry's base). `information` 3 x 3, possibly singular. Returns false when
-  // rejected by the gate (0: none).
+  // Corrects the state with the measured velocity of a point attached to the IMU (at `lever_arm`,
+  // IMU frame), expressed in a frame of orientation `frame_rotation` relative to the IMU (the wheel
+  // odometry's base): the IMU's velocity plus the turn about `turn_axes` (a projection of the
+  // angular velocity: a body rolls and pitches on its suspension without moving its wheels)
+  // times the lever arm. `information` 3 x 3, possibly singular. Returns false when rejected by
+  // the gate (0: none).
   bool update_point_velocity(const Eigen::Vector3d& measured, const Eigen::Matrix3d& information,
                              const Eigen::Vector3d& lever_arm,
                              const Eigen::Matrix3d& frame_rotation, const Eigen::Vector3d& gyro,
-                             double gate = 0.0);
+                             const Eigen::Matrix3d& turn_axes, double gate = 0.0);
   // Makes the current pose the marked scan's.
   void mark_scan();
 

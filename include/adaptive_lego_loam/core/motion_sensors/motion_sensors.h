@@ -48,13 +48,12 @@ class MotionSensors {
   // Before the scan whose sweep ends at `stamp` (a sweep of `sweep_period` s): the samples up to
   // `stamp` integrated. Empty when no input covers the scan.
   const MotionPrediction& predict(double stamp, double sweep_period);
-  // After mapping the same scan: its mapped motion since the previous scan (the LiDAR frame), the
-  // information the LiDAR's correspondences alone have of it (right perturbations, MotionPrior's)
-  // and whether the mapping weighed this scan's motion prior in (then what the LiDAR alone saw is
-  // taken out of the result, so that the prior is not counted twice); nothing when the scan was
-  // not mapped.
-  void update(const std::optional<Eigen::Isometry3d>& mapped_motion, const Matrix6d& information,
-              bool prior_used);
+  // After mapping the same scan: its mapped motion since the previous scan (the LiDAR frame) and
+  // the information the LiDAR's correspondences alone have of it (right perturbations,
+  // MotionPrior's); nothing when the scan was not mapped. The mapping's prior holds only the
+  // directions the LiDAR leaves open, where its information is nil: the filter does not learn its
+  // own prediction back.
+  void update(const std::optional<Eigen::Isometry3d>& mapped_motion, const Matrix6d& information);
 
   const MotionSensorsStatus& status() const { return status_; }
   const InertialFilter& filter() const { return filter_; }
@@ -64,7 +63,7 @@ class MotionSensors {
  private:
   struct TimedPose {
     double stamp;
-    Eigen::Isometry3d pose;  // the IMU in the filter's world
+    Eigen::Isometry3d pose;  // on path_
   };
   // Propagates the filter through the IMU samples up to `stamp`, with the wheel odometry's
   // velocities as measurements, recording the IMU's poses.
@@ -92,13 +91,16 @@ class MotionSensors {
   WheelScale wheel_scale_;
   std::optional<ImuSample> last_imu_;  // the last sample the filter integrated
   double last_wheel_stamp_ = -1e300;   // of the last wheel sample the filter used
+  // The IMU's path as the filter's steps move it, without the jumps of its corrections: what
+  // de-skews a sweep must be continuous.
+  Eigen::Isometry3d path_ = Eigen::Isometry3d::Identity();
   std::deque<TimedPose> recorded_;
   std::optional<double> previous_stamp_;  // the last scan's
   std::optional<double> interval_start_;  // the scan before the current one's
   double stamp_ = 0.0;
   std::optional<double> lidar_speed_;        // the base's forward speed the LiDAR measured last
-  int motions_in_a_row_ = 0;   // mapped motions (update()) since a scan went unmapped
-  int refusals_in_a_row_ = 0;  // LiDAR motions the filter's gate refused
+  int motions_in_a_row_ = 0;                 // mapped motions (update()) since a scan went unmapped
+  int refusals_in_a_row_ = 0;                // LiDAR motions the filter's gate refused
   std::optional<WheelMotion> wheel_motion_;  // this scan's, for the scale
   MotionPrediction prediction_;
   MotionSensorsStatus status_;
