@@ -58,8 +58,8 @@ TEST(WheelOdometryModel, ReportsTheSpeedWithTheSeedsScaleError) {
   EXPECT_TRUE(positive && negative);
 }
 
-// The rear axle, 0.4 m behind the LiDAR, rolls at the LiDAR's speed in a turn but slides
-// outward by 0.4 m times the yaw rate, which a wheel odometry does not report.
+// In a turn the rear axle, under the LiDAR, rolls at the LiDAR's speed and turns at its yaw rate;
+// nothing is reported sideways.
 TEST(WheelOdometryModel, TheBaseFramesMotionInATurn) {
   const double speed = 8.0, yaw_rate = 0.4;
   const WheelOdometryRun run =
