@@ -57,6 +57,15 @@ void emit_scenario(YAML::Emitter& out, const ScenarioParams& p) {
   out << YAML::Key << "vertical_m" << YAML::Value << p.shake.vertical_m;
   out << YAML::Key << "roll_deg" << YAML::Value << p.shake.roll_deg;
   out << YAML::Key << "pitch_deg" << YAML::Value << p.shake.pitch_deg;
+  if (p.rough_road) {  // keys that came later: the smooth rides' files stay as they were
+    const ShakeParams& s = p.shake;
+    out << YAML::Key << "body_hz" << YAML::Value << YAML::Flow << YAML::BeginSeq << s.body_min_hz
+        << s.body_max_hz << YAML::EndSeq;
+    out << YAML::Key << "vibration_vertical_m" << YAML::Value << s.vibration_vertical_m;
+    out << YAML::Key << "vibration_roll_pitch_deg" << YAML::Value << s.vibration_roll_pitch_deg;
+    out << YAML::Key << "vibration_hz" << YAML::Value << YAML::Flow << YAML::BeginSeq
+        << s.vibration_min_hz << s.vibration_max_hz << YAML::EndSeq;
+  }
   out << YAML::EndMap;
   out << YAML::EndMap;
 }

@@ -269,6 +269,14 @@ std::shared_ptr<World> populate(const SceneRequest& request, const GeneratedScen
   return world;
 }
 
+// The scene's drive joined smoothly: its trajectory becomes the smooth one.
+GeneratedScene join_smoothly(GeneratedScene scene, const SceneRequest& request, bool recorded) {
+  scene.motion = std::make_shared<const SmoothTrajectory>(scene.trajectory, request.frames,
+                                                          recorded ? kRecordedCutoffHz : 0.0);
+  scene.trajectory = scene.motion;
+  return scene;
+}
+
 }  // namespace
 
 GeneratedScene generate_scene(const SceneRequest& request) {
@@ -277,7 +285,8 @@ GeneratedScene generate_scene(const SceneRequest& request) {
   const bool recorded = !request.trajectory_poses.empty();
   const Shake shake =
       p.rough_road ? Shake(p.shake, derive_seed(request.seed, kShakeStream)) : Shake();
-  if (p.kind == ScenarioKind::kCorridor) return generate_corridor(request, shake);
+  if (p.kind == ScenarioKind::kCorridor)
+    return join_smoothly(generate_corridor(request, shake), request, false);
   Rng hill_rng(derive_seed(request.scene(), kHillStream));
   const HeightField hills =
       recorded ? HeightField() : HeightField(hill_rng, p.hill_amplitude_m, p.hill_wavelength_m, 3);
@@ -296,10 +305,7 @@ GeneratedScene generate_scene(const SceneRequest& request) {
   TerrainModel terrain(*scene.path, p, hills, relief, !recorded, request.reach);
   const RoadPlan plan = plan_road(request, *scene.path, tunnel, terrain);
   scene.world = populate(request, scene, terrain, plan, tunnel, ego_start_s, recorded);
-  scene.motion = std::make_shared<const SmoothTrajectory>(scene.trajectory, request.frames,
-                                                          recorded ? kRecordedCutoffHz : 0.0);
-  scene.trajectory = scene.motion;
-  return scene;
+  return join_smoothly(std::move(scene), request, recorded);
 }
 
 }  // namespace adaptive_lego_loam::sim

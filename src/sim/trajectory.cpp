@@ -23,22 +23,30 @@ double degrees_to_radians(double degrees) {
 
 Shake::Shake(const ShakeParams& params, uint64_t seed) {
   Rng rng(seed);
-  auto make_waves = [&rng](double bound) {
-    std::vector<Wave> waves(kWavesPerAxis);
+  // kWavesPerAxis waves in [min_hz, max_hz] appended to `waves`, their amplitudes summing to
+  // `bound`.
+  auto add_waves = [&rng](double bound, double min_hz, double max_hz, std::vector<Wave>& waves) {
+    std::vector<Wave> added(kWavesPerAxis);
     double weight_sum = 0.0;
-    for (Wave& wave : waves) {
+    for (Wave& wave : added) {
       wave.amplitude = rng.uniform(0.5, 1.0);
-      wave.frequency_hz = rng.uniform(1.5, 12.0);
+      wave.frequency_hz = rng.uniform(min_hz, max_hz);
       wave.phase = rng.uniform(0.0, 2.0 * M_PI);
       weight_sum += wave.amplitude;
     }
-    for (Wave& wave : waves)
-      wave.amplitude *= bound / weight_sum;  // |sum| <= bound
-    return waves;
+    for (Wave& wave : added)
+      wave.amplitude *= bound / weight_sum;
+    waves.insert(waves.end(), added.begin(), added.end());
   };
-  vertical_ = make_waves(params.vertical_m);
-  roll_ = make_waves(degrees_to_radians(params.roll_deg));
-  pitch_ = make_waves(degrees_to_radians(params.pitch_deg));
+  const double body_low = params.body_min_hz, body_high = params.body_max_hz;
+  add_waves(params.vertical_m, body_low, body_high, vertical_);
+  add_waves(degrees_to_radians(params.roll_deg), body_low, body_high, roll_);
+  add_waves(degrees_to_radians(params.pitch_deg), body_low, body_high, pitch_);
+  const double vibration_low = params.vibration_min_hz, vibration_high = params.vibration_max_hz;
+  const double vibration_angle = degrees_to_radians(params.vibration_roll_pitch_deg);
+  add_waves(params.vibration_vertical_m, vibration_low, vibration_high, vertical_);
+  add_waves(vibration_angle, vibration_low, vibration_high, roll_);
+  add_waves(vibration_angle, vibration_low, vibration_high, pitch_);
 }
 
 double Shake::sum(const std::vector<Wave>& waves, double time, int derivative) {

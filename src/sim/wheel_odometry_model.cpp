@@ -13,7 +13,8 @@ constexpr uint64_t kErrorStream = 0x574845454C45ull;  // "WHEELE"
 constexpr uint64_t kSlipStream = 0x574845454C53ull;   // "WHEELS"
 constexpr uint64_t kNoiseStream = 0x574845454C4Eull;  // "WHEELN"
 
-// The true forward speed and yaw rate of the base at each time.
+// The true forward speed and yaw rate of the base at each time: it is on the chassis, which the
+// wheels roll with, not on the body shaking above it.
 struct BaseMotion {
   double time, speed, yaw_rate;
 };
@@ -23,7 +24,7 @@ std::vector<BaseMotion> base_motions(const SmoothTrajectory& trajectory,
                                      const std::vector<double>& times) {
   std::vector<BaseMotion> motions;
   for (double time : times) {
-    const Kinematics base = mounted(trajectory.motion(time), lidar_from_base);
+    const Kinematics base = mounted(trajectory.unshaken_motion(time), lidar_from_base);
     motions.push_back({time, base.body_velocity().x(), base.angular_velocity.z()});
   }
   return motions;

@@ -39,7 +39,7 @@ TEST(RunDescription, SensorsYamlIsAConfigFragment) {
   EXPECT_EQ(config.imu.extrinsic_xyz_m, std::vector<double>({-0.12, 0.08, -0.18}));
   EXPECT_NEAR(config.imu.gyro_noise_density / adis16448().gyro_noise_density, 1.0, 1e-9);
   EXPECT_NEAR(config.imu.gyro_bias_sigma / adis16448().gyro_turn_on_bias, 1.0, 1e-9);
-  EXPECT_EQ(config.wheel_odometry.extrinsic_xyz_m, std::vector<double>({-0.4, 0.0, -1.73}));
+  EXPECT_EQ(config.wheel_odometry.extrinsic_xyz_m, std::vector<double>({0.0, 0.0, -1.73}));
   EXPECT_DOUBLE_EQ(config.wheel_odometry.speed_sigma, 0.05);
 }
 

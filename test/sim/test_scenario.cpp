@@ -155,6 +155,13 @@ TEST_P(EveryScenario, GeneratesLabelledScans) {
   }
 }
 
+// The scans, the ground truth and the motion sensors follow one smooth curve in every scenario.
+TEST_P(EveryScenario, DrivesTheSmoothTrajectory) {
+  const GeneratedScene scene = generate_scene(request_for(GetParam(), 3));
+  ASSERT_NE(scene.motion, nullptr);
+  EXPECT_EQ(scene.trajectory, scene.motion);
+}
+
 INSTANTIATE_TEST_SUITE_P(Sim, EveryScenario,
                          ::testing::Values(ScenarioKind::kUrban, ScenarioKind::kHighway,
                                            ScenarioKind::kTunnel, ScenarioKind::kVegetation,

@@ -38,7 +38,7 @@ TEST(SmoothTrajectory, KeepsASyntheticDrivesFramePoses) {
   const auto path = std::make_shared<Path>(
       trace_pieces({{60.0, 0.0}, {0.5 * M_PI * 14.0, 1.0 / 14.0}, {60.0, 0.0}}), false);
   const SpeedProfile speed{10.0, 0.1, 20.0, 0.4};
-  const Shake shake(ShakeParams{0.03, 1.5, 1.5}, 7);
+  const Shake shake(ShakeParams(), 7);
   auto drive = std::make_shared<PathTrajectory>(path, speed, 30.0, -1.75, 1.73, shake, 0.1);
   const SmoothTrajectory smooth(drive, 60, 0.0);
   for (int frame = 0; frame < 60; ++frame) {
@@ -55,7 +55,7 @@ TEST(SmoothTrajectory, KeepsASyntheticDrivesFramePoses) {
 }
 
 TEST(SmoothTrajectory, MotionIsThePosesDerivatives) {
-  const Shake shake(ShakeParams{0.03, 1.5, 1.5}, 3);
+  const Shake shake(ShakeParams(), 3);
   const auto drive = smooth_drive(winding(), 12.0, shake);
   constexpr double h = 1e-4;
   for (double t = 0.5; t < 11.5; t += 0.731) {

@@ -3,20 +3,25 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
+#include <vector>
 
 #include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/common/rotations.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/scan_files.h"
+#include "adaptive_lego_loam/sim/imu_model.h"
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/sequence_writer.h"
 #include "adaptive_lego_loam/sim/simulator.h"
+#include "sim/motion_drives.h"
 #include "sim/sim_requests.h"
 
 using namespace adaptive_lego_loam;
@@ -36,6 +41,47 @@ TEST(SimTrajectory, BeforeItsFirstPoseASampledDriveKeepsItsFirstMotion) {
   EXPECT_NEAR(before.linear()(1, 0), -std::sin(0.05), 1e-9);
   EXPECT_TRUE(drive.sensor_pose(0.05).translation().isApprox(Eigen::Vector3d(1.25, 0.05, 0.0)));
   EXPECT_TRUE(drive.sensor_pose(0.3).isApprox(poses[1]));  // after the last: it stands
+}
+
+// A rough lane shakes the car's body on its suspension, and the LiDAR and IMU with it: a degree
+// or two from one scan to the next (what de-skewing must answer), at the accelerations and rates
+// of a body, not the several g and 100 deg/s of a shaker.
+TEST(SimTrajectory, ARoughRoadShakesTheSensorAsACarBodyOnItsSuspension) {
+  const Eigen::Isometry3d lidar_from_imu = ImuOptions().lidar_from_imu();
+  const auto standing_still = [](double) { return Eigen::Isometry3d::Identity(); };
+  constexpr double kDegrees = 180.0 / M_PI;
+  for (uint64_t seed = 1; seed <= 4; ++seed) {
+    const auto drive = smooth_drive(standing_still, 30.0, Shake(ShakeParams(), seed));
+    double peak_acceleration = 0.0, peak_rate = 0.0;
+    std::vector<double> tilt_changes;
+    for (int scan = 0; scan < 300; ++scan) {
+      const double time = 0.1 * scan;
+      const Kinematics lidar = drive->motion(time + 0.037);
+      const Kinematics imu = mounted(lidar, lidar_from_imu);
+      peak_acceleration =
+          std::max({peak_acceleration, lidar.acceleration.norm(), imu.acceleration.norm()});
+      peak_rate = std::max(peak_rate, kDegrees * lidar.angular_velocity.norm());
+      const Eigen::Vector3d turn = rotation_log(drive->sensor_pose(time).linear().transpose() *
+                                                drive->sensor_pose(time + 0.1).linear());
+      tilt_changes.push_back(kDegrees * std::hypot(turn.x(), turn.y()));
+    }
+    EXPECT_GT(peak_acceleration, 1.0) << seed;
+    EXPECT_LT(peak_acceleration, 9.81) << seed;  // m/s^2, gravity excluded
+    EXPECT_LT(peak_rate, 30.0) << seed;          // deg/s
+    std::sort(tilt_changes.begin(), tilt_changes.end());
+    EXPECT_GT(tilt_changes[150], 0.4) << seed;  // deg, the median
+    EXPECT_LT(tilt_changes[150], 1.2) << seed;
+    EXPECT_GT(tilt_changes.back(), 1.0) << seed;
+    EXPECT_LT(tilt_changes.back(), 2.5) << seed;
+  }
+}
+
+TEST(SimTrajectory, TheShakeComesFromItsSeed) {
+  const Shake shake(ShakeParams(), 3), again(ShakeParams(), 3), other(ShakeParams(), 4);
+  EXPECT_EQ(shake.axes(1.234), again.axes(1.234));
+  EXPECT_EQ(shake.at(1.234).matrix(), again.at(1.234).matrix());
+  EXPECT_NE(shake.axes(1.234), other.axes(1.234));
+  EXPECT_EQ(Shake().axes(1.234), Eigen::Matrix3d::Zero());  // a smooth ride
 }
 
 TEST(SimTrajectory, KittiGroundTruthDrivesTheSensor) {

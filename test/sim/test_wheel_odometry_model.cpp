@@ -1,9 +1,10 @@
 // The simulated wheel odometry reports the base frame's forward speed and yaw rate with the
-// seed's scale error, sees the lever arm in a turn, shows its slips, and integrates as a driver
-// would.
+// seed's scale error, sees the lever arm in a turn, rolls with the chassis on a rough road, shows
+// its slips, and integrates as a driver would.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "adaptive_lego_loam/sim/wheel_odometry_model.h"
@@ -57,8 +58,8 @@ TEST(WheelOdometryModel, ReportsTheSpeedWithTheSeedsScaleError) {
   EXPECT_TRUE(positive && negative);
 }
 
-// The rear axle, 0.4 m behind the LiDAR, rolls at the LiDAR's speed in a turn but slides
-// outward by 0.4 m times the yaw rate, which a wheel odometry does not report.
+// In a turn the rear axle, under the LiDAR, rolls at the LiDAR's speed and turns at its yaw rate;
+// nothing is reported sideways.
 TEST(WheelOdometryModel, TheBaseFramesMotionInATurn) {
   const double speed = 8.0, yaw_rate = 0.4;
   const WheelOdometryRun run =
@@ -85,6 +86,43 @@ TEST(WheelOdometryModel, ReportsWhatTheCoresTestsExpectOfAWheelOdometry) {
     EXPECT_NEAR(sample.linear_velocity.x(), expected.linear_velocity.x(), 1e-4) << sample.stamp;
     EXPECT_NEAR(sample.angular_velocity.z(), expected.angular_velocity.z(), 1e-5) << sample.stamp;
   }
+}
+
+// On a rough road the body, and the LiDAR on it, shakes on its suspension while the wheels roll
+// on the road: the odometry reads the chassis' motion at the base, not that of a point swung by
+// the body's roll and pitch 1.7 m below the LiDAR; with its noise, within that noise.
+TEST(WheelOdometryModel, OnARoughRoadTheWheelsRollWithTheChassis) {
+  const auto drive = smooth_drive(winding(), 8.0, Shake(ShakeParams(), 5));
+  const auto chassis = [&](double t) { return drive->unshaken_pose(t); };
+  const auto body = [&](double t) { return drive->sensor_pose(t); };
+  WheelOdometryOptions options = error_free();
+  const Eigen::Isometry3d lidar_from_base = options.lidar_from_base();
+  const WheelOdometryRun run = WheelOdometryModel(options, 1).simulate(*drive, 1.0, 7.0);
+  double body_error = 0.0;
+  for (const WheelOdometrySample& sample : run.samples) {
+    const WheelOdometrySample expected =
+        adaptive_lego_loam::test::wheel_sample(chassis, sample.stamp, lidar_from_base);
+    EXPECT_NEAR(sample.linear_velocity.x(), expected.linear_velocity.x(), 1e-4) << sample.stamp;
+    EXPECT_NEAR(sample.angular_velocity.z(), expected.angular_velocity.z(), 1e-5) << sample.stamp;
+    const WheelOdometrySample on_body =
+        adaptive_lego_loam::test::wheel_sample(body, sample.stamp, lidar_from_base);
+    body_error =
+        std::max(body_error, std::abs(sample.linear_velocity.x() - on_body.linear_velocity.x()));
+  }
+  EXPECT_GT(body_error, 0.1);  // m/s: what a base on the shaking body would read
+
+  options.noise = true;
+  const WheelOdometryRun noisy = WheelOdometryModel(options, 1).simulate(*drive, 1.0, 7.0);
+  double sum = 0.0, square_sum = 0.0;
+  for (std::size_t i = 0; i < noisy.samples.size(); ++i) {
+    const double error = noisy.samples[i].linear_velocity.x() - run.samples[i].linear_velocity.x();
+    sum += error;
+    square_sum += error * error;
+  }
+  const double count = static_cast<double>(noisy.samples.size());
+  const double speed_noise = options.wheel_speed_noise / std::sqrt(2.0);  // of (l + r) / 2
+  EXPECT_LT(std::abs(sum / count), 0.25 * speed_noise);
+  EXPECT_NEAR(std::sqrt(square_sum / count), speed_noise, 0.2 * speed_noise);
 }
 
 // A wheel spinning on a wet patch: the speed over the true one by tens of percent, and a yaw rate

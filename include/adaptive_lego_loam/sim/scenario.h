@@ -75,9 +75,9 @@ struct ScenarioParams {
   double leaf_jitter_m = 0.04;
   double foliage_density = 1.0;
   int wind_states = 6;
-  // Turbulence: the sensor shakes on a rough road.
+  // A rough road: the vehicle's body shakes on its suspension, and the sensor with it.
   bool rough_road = false;
-  ShakeParams shake{0.03, 1.5, 1.5};
+  ShakeParams shake;
 };
 
 ScenarioParams default_scenario(ScenarioKind kind);

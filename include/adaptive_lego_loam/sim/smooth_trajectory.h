@@ -31,14 +31,17 @@ class SmoothTrajectory : public Trajectory {
   double frame_time(int frame) const override { return base_->frame_time(frame); }
   int frame_limit() const override { return frame_limit_; }
 
-  // The sensor's kinematics in the world at `time`, the shake included.
+  // The sensor's kinematics in the world at `time`, the shake included: what the LiDAR and the
+  // IMU, mounted on the vehicle's body, move with.
   Kinematics motion(double time) const;
+  // The same without the shake: the chassis the body shakes on, at the sensor's place, which
+  // the wheels roll with.
+  Kinematics unshaken_motion(double time) const;
   double position_cutoff_hz() const { return position_cutoff_hz_; }
   // The trajectory it joins smoothly.
   const Trajectory& base() const { return *base_; }
 
  private:
-  Kinematics unshaken_motion(double time) const;
   Kinematics shake_motion(double time) const;
 
   std::shared_ptr<const Trajectory> base_;

@@ -12,12 +12,19 @@
 
 namespace adaptive_lego_loam::sim {
 
-// Shaking of the sensor on a rough road: a sum of sinusoids per axis with seeded frequencies
-// (1.5-12 Hz) and phases; the amplitudes bound each axis. Zero amplitudes: a smooth ride.
+// A car body on its suspension over a rough lane (docs/simulator.md, "Rough road"): per axis a
+// sum of sinusoids with seeded frequencies and phases, bounded by the amplitudes. The body modes
+// bounce, roll and pitch it by centimetres and degrees at 1-2.5 Hz; wheel hop and the road's
+// texture add a vibration of a fraction of a millimetre and hundredths of a degree at 10-30 Hz.
+// The defaults are a rough lane; Shake() is a smooth ride.
 struct ShakeParams {
-  double vertical_m = 0.0;
-  double roll_deg = 0.0;
-  double pitch_deg = 0.0;
+  double vertical_m = 0.03;
+  double roll_deg = 1.5;
+  double pitch_deg = 1.5;
+  double body_min_hz = 1.0, body_max_hz = 2.5;
+  double vibration_vertical_m = 0.0002;
+  double vibration_roll_pitch_deg = 0.02;
+  double vibration_min_hz = 10.0, vibration_max_hz = 30.0;
 };
 
 class Shake {

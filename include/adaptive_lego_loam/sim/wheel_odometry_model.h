@@ -1,8 +1,9 @@
 #pragma once
-// A car's wheel odometry along the smooth trajectory, as a differential-drive odometry reports
-// it: the base frame's (the rear axle's centre on the ground) forward speed and yaw rate from
-// the two rear wheels' speeds, with a scale error, a track-width error, white noise and slip
-// events, sideways and vertical speed 0 whatever the vehicle does.
+// A car's wheel odometry along the smooth trajectory's chassis (without a rough road's shake), as
+// a differential-drive odometry reports it: the base frame's (the rear axle's centre on the
+// ground) forward speed and yaw rate from the two rear wheels' speeds, with a scale error, a
+// track-width error, white noise and slip events, sideways and vertical speed 0 whatever the
+// vehicle does.
 
 #include <array>
 #include <cstdint>
@@ -14,10 +15,11 @@
 namespace adaptive_lego_loam::sim {
 
 struct WheelOdometryOptions {
-  // The base frame's pose in the LiDAR frame (the config's wheel_odometry.extrinsic_*): the rear
-  // axle's centre on the ground below the LiDAR (z = -sensor height). The simulated vehicle's
-  // path is the LiDAR's, heading along its tangent: the point that does not slide sideways in a
-  // turn is the one below the LiDAR, so the rear axle is there.
+  // The base frame's pose in the LiDAR frame with the body at rest (the config's
+  // wheel_odometry.extrinsic_*): the rear axle's centre on the ground below the LiDAR (z = -sensor
+  // height). The simulated vehicle's path is the LiDAR's, heading along its tangent: the point
+  // that does not slide sideways in a turn is the one below the LiDAR, so the rear axle is there.
+  // The base is on the chassis; on a rough road the LiDAR shakes with the body above it.
   std::array<double, 3> mount_rpy_deg{0.0, 0.0, 0.0};
   std::array<double, 3> mount_xyz_m{0.0, 0.0, -1.73};
   double rate_hz = 50.0;
