@@ -69,7 +69,7 @@ void ImageProjectionNode::on_scan(const sensor_msgs::PointCloud2ConstPtr& msg) {
 
 bool ImageProjectionNode::filter(const sensor_msgs::PointCloud2& msg) {
   const std::string& topic = scan_sub_.getTopic();
-  ros_bridge::from_ros(msg, topic, scan_);
+  ros_bridge::from_ros(msg, topic, scan_, {config_.sensor.scan_period});
   try {
     filter_.process(scan_, filtered_);
   } catch (const std::invalid_argument& e) {  // e.g. the config wants rings the cloud lacks

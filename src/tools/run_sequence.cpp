@@ -51,10 +51,10 @@ struct Options {
   std::vector<double> initial_pose;  // x, y, z, yaw in degrees
 };
 
-std::unique_ptr<ScanSequence> open_sequence(const Options& options) {
+std::unique_ptr<ScanSequence> open_sequence(const Options& options, const SensorParams& sensor) {
   if (fs::is_directory(options.input)) return open_folder_sequence(options.input);
   if (fs::path(options.input).extension() == ".bag") {
-    return ros_bridge::open_bag_sequence(options.input, options.topic);
+    return ros_bridge::open_bag_sequence(options.input, options.topic, {sensor.scan_period});
   }
   throw IoError(options.input +
                 ": expected a KITTI sequence folder, a folder of .bin/.pcd scans "
@@ -278,7 +278,7 @@ int run(const Options& options) {
   }
   // A map folder that cannot take the map stops the run now, not after it.
   if (!options.save_map.empty()) check_map_folder(options.save_map);
-  std::unique_ptr<ScanSequence> sequence = open_sequence(options);
+  std::unique_ptr<ScanSequence> sequence = open_sequence(options, config.sensor);
   std::unique_ptr<Pipeline> pipeline = make_pipeline(options, config);
   Outputs outputs(options.output);
   const int total = options.max_frames >= 0 && sequence->size() >= 0
