@@ -38,17 +38,17 @@ struct DriverSweep {
   }
 };
 
-// Beams evenly from `lowest_deg` to `highest_deg`, a wall 5 to 25 m away whose range changes with
-// the column, and no return on every seventh cell. Point times are their columns' times.
-inline DriverSweep example_sweep(int beams, int columns, double lowest_deg, double highest_deg,
+// Beams at `elevations_deg` (ascending), a wall 5 to 25 m away whose range changes with the
+// column, and no return on every seventh cell. Point times are their columns' times.
+inline DriverSweep example_sweep(const std::vector<double>& elevations_deg, int columns,
                                  double period = 0.1) {
   DriverSweep sweep;
+  const int beams = static_cast<int>(elevations_deg.size());
   sweep.beams = beams;
   sweep.columns = columns;
   sweep.period = period;
   for (int beam = 0; beam < beams; ++beam) {
-    const double elevation =
-        (lowest_deg + (highest_deg - lowest_deg) * beam / std::max(beams - 1, 1)) * M_PI / 180.0;
+    const double elevation = elevations_deg[beam] * M_PI / 180.0;
     for (int column = 0; column < columns; ++column) {
       if ((beam * columns + column) % 7 == 3) {
         sweep.cells.emplace_back();
@@ -68,6 +68,15 @@ inline DriverSweep example_sweep(int beams, int columns, double lowest_deg, doub
     }
   }
   return sweep;
+}
+
+// The same with beams evenly from `lowest_deg` to `highest_deg`.
+inline DriverSweep example_sweep(int beams, int columns, double lowest_deg, double highest_deg,
+                                 double period = 0.1) {
+  std::vector<double> elevations;
+  for (int beam = 0; beam < beams; ++beam)
+    elevations.push_back(lowest_deg + (highest_deg - lowest_deg) * beam / std::max(beams - 1, 1));
+  return example_sweep(elevations, columns, period);
 }
 
 // A cloud's fields and records, filled one value at a time.

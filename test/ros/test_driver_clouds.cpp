@@ -11,6 +11,7 @@
 #include <functional>
 #include <tuple>
 
+#include "adaptive_lego_loam/core/projection/range_image.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/ros/bag_sequence.h"
 #include "adaptive_lego_loam/ros/cloud_conversions.h"
@@ -202,4 +203,44 @@ TEST(DriverClouds, AMissingCoordinateNamesTheFieldsPresent) {
   EXPECT_NE(error.find("/points: missing field z; fields present: x y intensity timestamp ring"),
             std::string::npos)
       << error;
+}
+
+namespace {
+
+// The share of a driver's returns that the shipped config puts in the row of the beam they came
+// from (the beam's elevation in the config).
+double share_in_beam_row(const std::string& config_file,
+                         const std::function<sensor_msgs::PointCloud2(const DriverSweep&)>& cloud) {
+  const SensorParams sensor = load_config(std::string(CONFIG_DIR) + "/" + config_file).sensor;
+  const DriverSweep sweep = example_sweep(sensor.beam_angles_deg, 360, sensor.scan_period);
+  const Scan scan = ros_bridge::from_ros(cloud(sweep), "/points", {sensor.scan_period});
+  RangeImage image;
+  RangeProjector(sensor).project(scan, image);
+  int right = 0;
+  for (int cell = 0; cell < image.size(); ++cell) {
+    if (!image.occupied(cell)) continue;
+    const ScanPoint& p = image.point(cell);
+    const double elevation = std::atan2(p.z, std::hypot(p.x, p.y)) * 180.0 / M_PI;
+    right += std::abs(elevation - sensor.beam_angles_deg[image.row_of(cell)]) < 1e-3;
+  }
+  return static_cast<double>(right) / sweep.returns();
+}
+
+}  // namespace
+
+// Each shipped config reads the ring field as its driver numbers the beams (ouster-ros and the
+// XT32 from the top, the QT64 and rs_driver from the bottom): every return in its beam's row.
+TEST(DriverClouds, ShippedConfigsReadTheirDriversRings) {
+  const auto ouster = [](const DriverSweep& s) { return ouster_ros_cloud(s, true, true); };
+  for (const char* config : {"os0_64.yaml", "os1_64.yaml", "os1_128.yaml", "os2_128.yaml"}) {
+    EXPECT_EQ(share_in_beam_row(config, ouster), 1.0) << config;
+  }
+  EXPECT_EQ(share_in_beam_row("pandar_xt32.yaml",
+                              [](const DriverSweep& s) { return hesai_cloud(s, true); }),
+            1.0);
+  EXPECT_EQ(share_in_beam_row("pandar_qt64.yaml",
+                              [](const DriverSweep& s) { return hesai_cloud(s, false); }),
+            1.0);
+  EXPECT_EQ(share_in_beam_row("rs_helios_32.yaml", rslidar_cloud), 1.0);
+  EXPECT_EQ(share_in_beam_row("vlp16.yaml", velodyne_cloud), 1.0);
 }

@@ -192,6 +192,7 @@ void read_segmentation(SectionReader& in, SegmentationParams& s) {
   in.number("beta0_deg", s.beta0_deg, 0.1, 89.9);
   read_size_rule(in, s.size_rule);
   in.number("ground_slope_tolerance_deg", s.ground_slope_tolerance_deg, 0.0, 45.0);
+  in.number("ground_row_gap_deg", s.ground_row_gap_deg, 0.0, 10.0);
   in.number("ground_downsample", s.ground_downsample, 1, 100);
   in.number("outlier_downsample", s.outlier_downsample, 1, 100);
   in.reject_unknown_keys();

@@ -23,7 +23,8 @@ const char* kMinimal = "sensor:\n  rows: 16\n  columns: 1800\n";
 }  // namespace
 
 TEST(Params, ShippedConfigsLoad) {
-  for (const char* name : {"vlp16", "hdl32", "hdl64e", "kitti", "kitti_16rings"}) {
+  for (const char* name : {"vlp16", "hdl32", "hdl64e", "kitti", "kitti_16rings", "os0_64", "os1_64",
+                           "os1_128", "os2_128", "pandar_xt32", "pandar_qt64", "rs_helios_32"}) {
     const std::string path = std::string(CONFIG_DIR) + "/" + name + ".yaml";
     SCOPED_TRACE(path);
     const Config config = load_config(path);
@@ -39,6 +40,21 @@ TEST(Params, ShippedConfigsLoad) {
   ASSERT_EQ(thinned.sensor.ring_to_row.size(), 64u);
   EXPECT_EQ(std::count(thinned.sensor.ring_to_row.begin(), thinned.sensor.ring_to_row.end(), -1),
             48);
+}
+
+// Ouster's drivers and the XT32's number rings from the top beam: their configs turn them round.
+TEST(Params, TopDownRingsAreTurnedRound) {
+  const Config os1 = load_config(std::string(CONFIG_DIR) + "/os1_128.yaml");
+  ASSERT_EQ(os1.sensor.ring_to_row.size(), 128u);
+  EXPECT_EQ(os1.sensor.ring_to_row.front(), 127);
+  EXPECT_EQ(os1.sensor.ring_to_row.back(), 0);
+  EXPECT_DOUBLE_EQ(os1.segmentation.ground_row_gap_deg, 1.0);
+  EXPECT_DOUBLE_EQ(
+      load_config(std::string(CONFIG_DIR) + "/vlp16.yaml").segmentation.ground_row_gap_deg, 0.0);
+  const std::string error =
+      error_of(std::string(kMinimal) + "segmentation:\n  ground_row_gap_deg: 11\n");
+  EXPECT_NE(error.find("segmentation.ground_row_gap_deg = 11 is out of range"), std::string::npos)
+      << error;
 }
 
 TEST(Params, RingToRowBelowMinusOneIsRejected) {

@@ -54,6 +54,8 @@ struct SegmentationParams {
   double beta0_deg = 60.0;  // LeGO-LOAM's segmentTheta
   ClusterSizeRule size_rule;
   double ground_slope_tolerance_deg = 10.0;
+  // The ground test pairs each row with the first at least this much higher (0: the next row).
+  double ground_row_gap_deg = 0.0;
   int ground_downsample = 5;   // keep every n-th ground column in the segmented cloud
   int outlier_downsample = 5;  // keep every n-th outlier column in the outlier cloud
 };
