@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <rosbag/bag.h>
 
 #include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/projection/config_fit.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/progress.h"
@@ -138,6 +140,34 @@ class BagOutput {
   rosbag::Bag bag_;
 };
 
+// The shipped configs (config/*.yaml) that read what was written: the folder's scans (no ring
+// field) and the bag's clouds (ring field).
+void print_matching_configs(const SensorParams& sensor, int firings, bool bag) {
+  std::vector<std::string> paths;
+  for (const auto& entry : std::filesystem::directory_iterator(CONFIG_DIR)) {
+    if (entry.path().extension() == ".yaml") paths.push_back(entry.path().string());
+  }
+  std::sort(paths.begin(), paths.end());
+  for (const bool ring_field : {false, true}) {
+    if (ring_field && !bag) continue;
+    std::string names;
+    for (const std::string& path : paths) {
+      try {
+        if (config_reads(load_config(path).sensor, sensor, firings, ring_field)) {
+          names += (names.empty() ? " config/" : ", config/") +
+                   std::filesystem::path(path).filename().string();
+        }
+      } catch (const ConfigError&) {
+      }
+    }
+    std::printf(
+        "lidar_sim: %s fit%s\n",
+        ring_field ? "the bag's clouds (with a ring field)"
+                   : "the scans in velodyne/ (no ring field)",
+        names.empty() ? " none of the shipped configs: derive_config measures one" : names.c_str());
+  }
+}
+
 void print_class_shares(const std::map<uint16_t, long>& counts, long total) {
   std::printf("lidar_sim: points per class:");
   for (const auto& [semantic, count] : counts) {
@@ -210,6 +240,7 @@ int run(Options& o) {
   writer.finish(run_yaml(description));
 
   print_class_shares(class_counts, points);
+  print_matching_configs(config.sensor, model.columns(), bag != nullptr);
   std::printf("lidar_sim: %.0f points per frame; ray casting %.2f s\n",
               static_cast<double>(points) / o.frames, simulator.ray_casting_seconds());
   // CPU time too: on a shared machine the wall clock also counts other processes' turns.

@@ -16,6 +16,7 @@
 
 #include "adaptive_lego_loam/core/common/scan_stamps.h"
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/core/projection/config_fit.h"
 #include "adaptive_lego_loam/io/atomic_files.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/map_files.h"
@@ -292,6 +293,7 @@ int run(const Options& options) {
   int frames = 0, empty_scans = 0, motion_gated_scans = 0, skipped_scans = 0;
   int odometry_rejected_motions = 0;
   ScanStamps stamps(config.sensor.scan_period);
+  ConfigFitWarning fit(options.config, options.input);
   LocalizationCounts localization;
   std::optional<double> last_stamp;
   std::string failure;
@@ -310,6 +312,11 @@ int run(const Options& options) {
       stamps.add(scan->stamp);
       last_stamp = scan->stamp;
       const FrameResult& result = pipeline->process(*scan);
+      if (const auto warning =
+              fit.check(config.sensor, pipeline->filter_result().segmentation.image,
+                        rows_from_ring(config.sensor, scan->has_ring))) {
+        std::fprintf(stderr, "\nrun_sequence: warning: %s\n", warning->c_str());
+      }
       heap_trimmer.after_scan();
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
@@ -362,6 +369,7 @@ int run(const Options& options) {
   summary["frames"] = frames;
   summary["scans_without_valid_points"] = empty_scans;
   summary["skipped_scans"] = skipped_scans;
+  summary["config_fit"] = fit.seen();  // what of the config does not fit the scans (empty: all)
   summary["input_stamps"] = {{"gaps", stamps.gaps()},
                              {"missing_scans", stamps.missing()},
                              {"duplicates", stamps.duplicates()},
