@@ -11,6 +11,7 @@
 
 #include "adaptive_lego_loam/core/clustering/segmenter.h"
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/core/projection/sensor_survey.h"
 #include "adaptive_lego_loam/eval/metrics.h"
 #include "adaptive_lego_loam/sim/labels.h"
 #include "adaptive_lego_loam/sim/scenario.h"
@@ -155,5 +156,35 @@ TEST(ShippedSensors, EveryShippedConfigTracksASimulatedDrive) {
     ASSERT_GT(path, 40.0) << sensor << ": the premise, a drive of some length";
     EXPECT_LT(ate, 0.2) << sensor;
     EXPECT_LT(end_error, 0.02 * path) << sensor;
+  }
+}
+
+// derive_config's survey of a few simulated scans of each shipped sensor in a tunnel (where every
+// beam comes back: in a street the QT64's top beams, 50 deg up, see nothing), with the ring field
+// (as its driver publishes) and without (as a folder of .bin files holds them): the config's
+// beams within 0.05 deg, its columns exactly, its ring numbering.
+TEST(ShippedSensors, TheSurveyOfSimulatedScansRecoversEveryShippedConfig) {
+  for (const std::string& sensor : kSensors) {
+    const SensorParams shipped = shipped_config(sensor).sensor;
+    std::vector<Scan> with_ring;
+    for (const SimFrame& frame : simulate(sensor, "tunnel", 5))
+      with_ring.push_back(frame.scan);
+    std::vector<Scan> without_ring = with_ring;
+    for (Scan& scan : without_ring)
+      scan.has_ring = false;
+    for (const auto* scans : {&with_ring, &without_ring}) {
+      const SensorSurvey survey = survey_sensor(*scans);
+      const std::string what = sensor + (scans == &with_ring ? " with rings" : " without rings");
+      ASSERT_TRUE(survey.not_spinning.empty()) << what << ": " << survey.not_spinning;
+      ASSERT_EQ(static_cast<int>(survey.beams.size()), shipped.rows) << what;
+      double worst = 0.0;
+      for (int row = 0; row < shipped.rows; ++row) {
+        worst = std::max(worst,
+                         std::abs(survey.beams[row].elevation_deg - shipped.beam_angles_deg[row]));
+      }
+      EXPECT_LT(worst, 0.05) << what;
+      EXPECT_EQ(survey.columns, shipped.columns) << what;
+      if (scans == &with_ring) EXPECT_EQ(survey.ring_to_row, shipped.ring_to_row) << what;
+    }
   }
 }
