@@ -213,6 +213,38 @@ std::vector<PointRows> elevation_labels(const std::vector<Scan>& scans, std::str
   return labels;
 }
 
+// Rings that sent no point but lie among (or below the first of) the ring numbers seen, when the
+// rings seen are evenly spaced in elevation: their beams continue the spacing (a top-down
+// numbered sensor's upper beams see nothing on an open road). Returns the rings added.
+std::string add_silent_even_rings(std::vector<SurveyedBeam>& beams) {
+  std::vector<SurveyedBeam> by_ring = beams;
+  std::sort(by_ring.begin(), by_ring.end(),
+            [](const SurveyedBeam& a, const SurveyedBeam& b) { return a.ring < b.ring; });
+  if (by_ring.size() < 3) return "";
+  const SurveyedBeam &first = by_ring.front(), &last = by_ring.back();
+  const double per_ring = (last.elevation_deg - first.elevation_deg) / (last.ring - first.ring);
+  for (const SurveyedBeam& beam : by_ring) {
+    const double expected = first.elevation_deg + per_ring * (beam.ring - first.ring);
+    if (std::abs(beam.elevation_deg - expected) > 2e-3) return "";
+  }
+  std::vector<bool> seen(last.ring + 1, false);
+  for (const SurveyedBeam& beam : by_ring)
+    seen[beam.ring] = true;
+  std::string added;
+  for (int ring = 0; ring <= last.ring; ++ring) {
+    if (seen[ring]) continue;
+    SurveyedBeam beam;
+    beam.ring = ring;
+    beam.elevation_deg = first.elevation_deg + per_ring * (ring - first.ring);
+    beams.push_back(beam);
+    added += " " + std::to_string(ring);
+  }
+  std::sort(beams.begin(), beams.end(), [](const SurveyedBeam& a, const SurveyedBeam& b) {
+    return a.elevation_deg < b.elevation_deg;
+  });
+  return added;
+}
+
 // Relabels points from their label (ring, laser, cluster) to the row of its beam, and drops the
 // points that lie off it (a laser's first points that the file order gave the laser before).
 void labels_to_rows(const std::vector<Scan>& scans, const std::vector<SurveyedBeam>& beams,
@@ -540,6 +572,14 @@ SensorSurvey survey_sensor(const std::vector<Scan>& scans) {
             worst->spread_deg);
     return survey;
   }
+  if (survey.ring_field) {
+    const std::string added = add_silent_even_rings(survey.beams);
+    if (!added.empty()) {
+      survey.report.push_back("no point came with ring" + added +
+                              ": evenly spaced like the others, their beams continue the "
+                              "spacing");
+    }
+  }
   labels_to_rows(scans, survey.beams, labels);
   const int rows = static_cast<int>(survey.beams.size());
   if (survey.ring_field) {
@@ -613,7 +653,8 @@ SensorSurvey survey_sensor(const std::vector<Scan>& scans) {
       latest = std::max(latest, p.time);
     }
     if (latest > earliest) spans.push_back(latest - earliest);
-    if (s > 0) stamp_steps.push_back(scans[s].stamp - scans[s - 1].stamp);
+    if (s > 0 && scans[s].stamp > scans[s - 1].stamp)
+      stamp_steps.push_back(scans[s].stamp - scans[s - 1].stamp);
   }
   survey.time_span_s = survey.has_time ? median(spans) : 0.0;
   survey.has_time &= survey.time_span_s > 0.0;
