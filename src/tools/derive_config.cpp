@@ -46,6 +46,11 @@ std::vector<Scan> read_scans(const Options& o, std::string& description) {
     scans.push_back(std::move(*scan));
   }
   if (scans.empty()) throw IoError(o.input + ": no scans");
+  // A folder without times.txt gives its scans made-up stamps: the period is not in them.
+  if (fs::is_directory(o.input) && !folder_has_times(o.input)) {
+    for (Scan& scan : scans)
+      scan.stamp = 0.0;
+  }
   return scans;
 }
 

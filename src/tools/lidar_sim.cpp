@@ -46,7 +46,7 @@ struct Options {
   std::optional<double> range_noise;
   std::optional<double> beam_divergence;
   std::optional<std::string> motion_distortion, rough_road;
-  std::optional<double> speed, leaf_jitter, foliage_density;
+  std::optional<double> speed, leaf_jitter, foliage_density, scan_period;
   double sensor_height = 1.73;
   bool identical_houses = false;
   bool overwrite = false;
@@ -179,7 +179,8 @@ void print_class_shares(const std::map<uint16_t, long>& counts, long total) {
 
 int run(Options& o) {
   resolve_sensor(o);
-  const Config config = load_config(o.config_path);
+  Config config = load_config(o.config_path);
+  if (o.scan_period) config.sensor.scan_period = *o.scan_period;
   SimSensorOptions sensor_options = preset_options(sensor_preset(o.sensor), config.sensor);
   if (o.columns) sensor_options.columns = *o.columns;
   if (o.range_noise) sensor_options.range_noise_m = *o.range_noise;
@@ -289,6 +290,10 @@ int main(int argc, char** argv) {
   app.add_option("--bag", o.bag,
                  "also write a rosbag: /velodyne_points (x y z intensity ring time) "
                  "and /ground_truth (nav_msgs/Odometry)");
+  app.add_option("--scan-period", o.scan_period,
+                 "seconds a turn (default: the config's scan_period; 0.05 at 20 Hz, 0.2 at 5 Hz); "
+                 "with --columns for a sensor whose firings per turn change with the rate")
+      ->check(CLI::Range(0.01, 1.0));
   app.add_option("--columns", o.columns,
                  "firings per turn (default: the config's columns; 2083 for hdl64e)")
       ->check(CLI::Range(16, 20000));

@@ -53,7 +53,9 @@ struct Options {
 };
 
 std::unique_ptr<ScanSequence> open_sequence(const Options& options, const SensorParams& sensor) {
-  if (fs::is_directory(options.input)) return open_folder_sequence(options.input);
+  if (fs::is_directory(options.input)) {
+    return open_folder_sequence(options.input, sensor.scan_period);
+  }
   if (fs::path(options.input).extension() == ".bag") {
     return ros_bridge::open_bag_sequence(options.input, options.topic, {sensor.scan_period});
   }

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -368,6 +369,23 @@ void read_loop_closure(SectionReader& in, LoopClosureParams& l) {
   in.reject_unknown_keys();
 }
 
+// The per-scan settings, given for kReferenceScanPeriod, at the sensor's period: the same per
+// second. At the reference period nothing changes (not even by a rounding).
+void hold_per_second(Config& config) {
+  const double period = config.sensor.scan_period;
+  if (period == kReferenceScanPeriod) return;
+  const double scans = period / kReferenceScanPeriod;  // reference scans in one of this sensor's
+  const auto count = [scans](int reference) {
+    return reference > 0 ? std::max(1, static_cast<int>(std::lround(reference / scans))) : 0;
+  };
+  MappingParams& m = config.mapping;
+  m.max_motion_change *= scans;
+  m.max_motion_change_deg *= scans;
+  m.max_gated_scans = count(m.max_gated_scans);
+  config.localization.lost_after_scans = count(config.localization.lost_after_scans);
+  config.ambient.mu_smoothing = std::pow(config.ambient.mu_smoothing, scans);
+}
+
 void read_clustering_benchmark(SectionReader& in, ClusteringBenchmarkParams& b) {
   in.number("min_cluster_points", b.min_cluster_points, 1, 1000000);
   in.reject_unknown_keys();
@@ -452,6 +470,7 @@ Config parse_config(const std::string& yaml_text, const std::string& source) {
     if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
   }
   validate(config.sensor, source);
+  hold_per_second(config);
   return config;
 }
 

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include <algorithm>
 #include <string>
 
@@ -207,4 +210,37 @@ TEST(Params, KeyThatIsAListIsAConfigError) {
   error = error_of("sensor: {rows: 16, [a]: 2}\n");
   EXPECT_NE(error.find("test.yaml: sensor: the key at line 1 is not a name"), std::string::npos)
       << error;
+}
+
+// A config's per-scan settings are given for 0.1 s scans and hold per second at any rate: at
+// 20 Hz the motion gate allows half the change per scan and holds twice the scans, mu is smoothed
+// with the same time constant; at 10 Hz nothing changes, not by a rounding.
+TEST(Params, PerScanSettingsHoldPerSecondAtAnyRate) {
+  std::ifstream file(std::string(CONFIG_DIR) + "/vlp16.yaml");
+  std::stringstream text;
+  text << file.rdbuf();
+  const std::string at_10_hz = text.str();
+  const auto at_period = [&](const std::string& period) {
+    std::string yaml = at_10_hz;
+    const std::string key = "  scan_period: 0.1\n";
+    yaml.replace(yaml.find(key), key.size(), "  scan_period: " + period + "\n");
+    return parse_config(yaml, "vlp16_" + period + ".yaml");
+  };
+  const Config ten = parse_config(at_10_hz, "vlp16.yaml");
+  EXPECT_EQ(ten.mapping.max_motion_change, 0.3);
+  EXPECT_EQ(ten.mapping.max_motion_change_deg, 5.0);
+  EXPECT_EQ(ten.mapping.max_gated_scans, 3);
+  EXPECT_EQ(ten.ambient.mu_smoothing, 0.8);
+  EXPECT_EQ(ten.localization.lost_after_scans, 5);
+  const Config twenty = at_period("0.05");
+  EXPECT_DOUBLE_EQ(twenty.mapping.max_motion_change, 0.15);
+  EXPECT_DOUBLE_EQ(twenty.mapping.max_motion_change_deg, 2.5);
+  EXPECT_EQ(twenty.mapping.max_gated_scans, 6);
+  EXPECT_EQ(twenty.localization.lost_after_scans, 10);
+  EXPECT_DOUBLE_EQ(twenty.ambient.mu_smoothing * twenty.ambient.mu_smoothing, 0.8);
+  const Config five = at_period("0.2");
+  EXPECT_DOUBLE_EQ(five.mapping.max_motion_change, 0.6);
+  EXPECT_EQ(five.mapping.max_gated_scans, 2);  // 1.5 rounded
+  EXPECT_EQ(five.localization.lost_after_scans, 3);
+  EXPECT_DOUBLE_EQ(five.ambient.mu_smoothing, 0.64);
 }
