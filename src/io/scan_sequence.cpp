@@ -21,7 +21,8 @@ std::optional<Scan> FileSequence::next() {
   // Moved on first: a scan that cannot be read is skipped when the caller goes on.
   const std::size_t index = position_++;
   last_stamp_ = index < stamps_.size() ? stamps_[index] : scan_period_ * index;
-  Scan scan = read_scan_file(files_[index]);
+  // The sweep's period turns a legacy OS1's time (a share of the sweep) into seconds.
+  Scan scan = read_scan_file(files_[index], {scan_period_});
   scan.stamp = *last_stamp_;
   return scan;
 }

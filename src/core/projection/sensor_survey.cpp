@@ -721,7 +721,8 @@ SensorParams surveyed_sensor(const SensorSurvey& survey, const std::string& name
   sensor.ring_to_row = survey.ring_to_row;
   // The nearest return seen, but no more than 0.5 m: a drive may pass closer than these scans.
   sensor.min_range = std::clamp(std::floor(survey.min_range_m * 10.0) / 10.0, 0.1, 0.5);
-  sensor.max_range = std::min(1000.0, std::ceil(survey.max_range_m / 10.0) * 10.0);
+  // The farthest return in tens of metres, less 1 % of range noise beyond the sensor's reach.
+  sensor.max_range = std::min(1000.0, std::ceil(0.99 * survey.max_range_m / 10.0) * 10.0);
   sensor.mount_angle_deg = 0.0;
   sensor.ground_rows = survey.ground_rows;
   sensor.scan_period = survey.scan_period_s;

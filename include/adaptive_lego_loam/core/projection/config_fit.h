@@ -53,7 +53,8 @@ bool config_reads(const SensorParams& config, const SensorParams& sensor, int fi
                   bool ring_field);
 
 // Says what does not fit once: the first scan with a problem gives the line to log (naming the
-// config, the input and derive_config), later scans nothing.
+// config, the input and derive_config), later scans nothing. It looks at each of the first 20
+// scans, then at every 20th.
 class ConfigFitWarning {
  public:
   ConfigFitWarning(std::string config, std::string input)
@@ -66,6 +67,7 @@ class ConfigFitWarning {
  private:
   std::string config_, input_;
   bool warned_ = false;
+  long scans_ = 0;
   std::vector<std::string> seen_;
 };
 
