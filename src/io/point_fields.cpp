@@ -1,6 +1,7 @@
 #include "adaptive_lego_loam/io/point_fields.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -164,6 +165,52 @@ void for_each_record(const PackedPoints& packed, std::size_t row_step, Scan& sca
   }
 }
 
+// A time field and how its values become seconds since the sweep's start: (value - origin) *
+// scale.
+struct TimeField {
+  const FieldDescription* field = nullptr;
+  double scale = 1.0;
+  double origin = 0.0;
+};
+
+// Seconds from which a stamp is a clock's, not an offset within the sweep (about 12 days).
+constexpr double kClockSeconds = 1e6;
+
+// The smallest value of the field at or beyond `threshold` (NaN when there is none).
+double earliest_at_least(const PackedPoints& packed, std::size_t row_step,
+                         const FieldDescription& field, double threshold) {
+  double earliest = std::numeric_limits<double>::quiet_NaN();
+  for (uint32_t row = 0; row < packed.height; ++row) {
+    const uint8_t* record = packed.data + row * row_step + field.offset;
+    for (uint32_t column = 0; column < packed.width; ++column, record += packed.point_step) {
+      const double value = read_value(record, field.datatype, packed.big_endian);
+      if (value >= threshold && !(value >= earliest)) earliest = value;
+    }
+  }
+  return earliest;
+}
+
+TimeField time_field(const PackedPoints& packed, std::size_t row_step,
+                     const FieldDescription* field, const DecodeOptions& options) {
+  if (!field) return {};
+  TimeField time{field};
+  if (is_integer(field->datatype)) {
+    time.scale = 1e-9;  // nanoseconds (Ouster's t, nebula's time_stamp)
+  } else if (field->name == "t" && field->datatype == static_cast<uint8_t>(FieldType::kFloat32)) {
+    // The legacy OS1 driver's t: the column's share of the sweep, in [0, 1).
+    if (!(options.sweep_period > 0.0)) return {};
+    time.scale = options.sweep_period;
+  }
+  // A float64 stamp of a clock (Hesai's and RoboSense's absolute timestamp) loses its
+  // sub-millisecond part as a float: offsets from the earliest stamp keep it.
+  const bool can_hold_a_clock = field->datatype == static_cast<uint8_t>(FieldType::kFloat64);
+  if (can_hold_a_clock && packed.width > 0 && packed.height > 0) {
+    const double earliest = earliest_at_least(packed, row_step, *field, kClockSeconds / time.scale);
+    if (std::isfinite(earliest)) time.origin = earliest;
+  }
+  return time;
+}
+
 void decode_native(const PackedPoints& packed, std::size_t row_step, const PointFieldSet& f,
                    Scan& scan) {
   for_each_record(packed, row_step, scan, [&f](const uint8_t* record, ScanPoint& p) {
@@ -177,7 +224,7 @@ void decode_native(const PackedPoints& packed, std::size_t row_step, const Point
 }
 
 void decode_any(const PackedPoints& packed, std::size_t row_step, const PointFieldSet& f,
-                double time_scale, Scan& scan) {
+                const TimeField& time, Scan& scan) {
   const bool swap = packed.big_endian;
   const auto read = [swap](const uint8_t* record, const FieldDescription* field) {
     return read_value(record + field->offset, field->datatype, swap);
@@ -188,13 +235,21 @@ void decode_any(const PackedPoints& packed, std::size_t row_step, const PointFie
     p.z = static_cast<float>(read(record, f.z));
     p.intensity = f.intensity ? static_cast<float>(read(record, f.intensity)) : 0.f;
     p.ring = f.ring ? ring_value(read(record, f.ring)) : -1;
-    p.time = f.time ? static_cast<float>(read(record, f.time) * time_scale) : 0.f;
+    p.time = f.time ? static_cast<float>((read(record, f.time) - time.origin) * time.scale) : 0.f;
   });
 }
 
 }  // namespace
 
-void decode_points(const PackedPoints& packed, const std::string& source, Scan& scan) {
+std::string field_type_name(uint8_t datatype) {
+  static const char* const kNames[] = {"int8",  "uint8",  "int16",   "uint16",
+                                       "int32", "uint32", "float32", "float64"};
+  if (datatype >= 1 && datatype <= 8) return kNames[datatype - 1];
+  return "datatype " + std::to_string(datatype);
+}
+
+void decode_points(const PackedPoints& packed, const std::string& source, Scan& scan,
+                   const DecodeOptions& options) {
   const FieldDescription* x = find_field(packed, {"x"}, source, true);
   const FieldDescription* y = find_field(packed, {"y"}, source, true);
   const FieldDescription* z = find_field(packed, {"z"}, source, true);
@@ -205,30 +260,32 @@ void decode_points(const PackedPoints& packed, const std::string& source, Scan& 
   const std::size_t row_step = empty ? 0 : checked_row_step(packed, source);
   const FieldDescription* intensity = find_field(packed, {"intensity", "reflectance", "i"}, source);
   const FieldDescription* ring = find_field(packed, {"ring", "channel"}, source);
-  const FieldDescription* time =
+  const FieldDescription* time_candidate =
       find_field(packed, {"time", "t", "time_stamp", "timestamp"}, source);
   if (ring && !is_integer(ring->datatype)) {
-    throw IoError(source + ": field '" + ring->name + "' must have an integer type");
+    throw IoError(source + ": field '" + ring->name + "' has type " +
+                  field_type_name(ring->datatype) +
+                  "; expected an integer type (uint8, uint16, uint32, int8, int16 or int32)");
   }
-  // Integer time fields are nanoseconds (Ouster's t, nebula's time_stamp), float ones seconds.
-  const double time_scale = time && is_integer(time->datatype) ? 1e-9 : 1.0;
+  const TimeField time = time_field(packed, row_step, time_candidate, options);
 
   scan.has_ring = ring != nullptr;
-  scan.has_time = time != nullptr;
+  scan.has_time = time.field != nullptr;
   // Every field of every point is written below: the buffer of a scan before leaves nothing.
   scan.points.resize(empty ? 0 : std::size_t{packed.width} * packed.height);
   if (empty) return;
-  const PointFieldSet fields{x, y, z, intensity, ring, time};
-  if (native_layout(packed, fields)) {
+  const PointFieldSet fields{x, y, z, intensity, ring, time.field};
+  if (native_layout(packed, fields) && time.scale == 1.0 && time.origin == 0.0) {
     decode_native(packed, row_step, fields, scan);
   } else {
-    decode_any(packed, row_step, fields, time_scale, scan);
+    decode_any(packed, row_step, fields, time, scan);
   }
 }
 
-Scan decode_points(const PackedPoints& packed, const std::string& source) {
+Scan decode_points(const PackedPoints& packed, const std::string& source,
+                   const DecodeOptions& options) {
   Scan scan;
-  decode_points(packed, source, scan);
+  decode_points(packed, source, scan, options);
   return scan;
 }
 

@@ -458,7 +458,7 @@ void write_kitti_bin(const std::string& path, const Scan& scan) {
   if (!file) throw IoError(path + ": write failed");
 }
 
-Scan parse_pcd(const std::string& bytes, const std::string& source) {
+Scan parse_pcd(const std::string& bytes, const std::string& source, const DecodeOptions& options) {
   const PcdHeader header = read_pcd_header(bytes, source);
   const PcdLayout layout = pcd_layout(header, source);
   PackedPoints packed;
@@ -471,7 +471,7 @@ Scan parse_pcd(const std::string& bytes, const std::string& source) {
     packed.data = reinterpret_cast<const uint8_t*>(bytes.data()) + header.body;
     packed.data_size = records_size(layout.points, header.point_step, bytes.size() - header.body,
                                     source, "PCD binary data");
-    return decode_points(packed, source);
+    return decode_points(packed, source, options);
   }
   if (header.data == "ascii") {
     records = read_ascii_body(bytes, header, layout.points, source);
@@ -485,17 +485,17 @@ Scan parse_pcd(const std::string& bytes, const std::string& source) {
   packed.point_step = records.point_step;
   packed.data = records.bytes.data();
   packed.data_size = records.bytes.size();
-  return decode_points(packed, source);
+  return decode_points(packed, source, options);
 }
 
-Scan read_pcd(const std::string& path) {
-  return parse_pcd(read_file_bytes(path, "PCD file"), path);
+Scan read_pcd(const std::string& path, const DecodeOptions& options) {
+  return parse_pcd(read_file_bytes(path, "PCD file"), path, options);
 }
 
-Scan read_scan_file(const std::string& path) {
+Scan read_scan_file(const std::string& path, const DecodeOptions& options) {
   const std::string extension = fs::path(path).extension().string();
   if (extension == ".bin") return read_kitti_bin(path);
-  if (extension == ".pcd") return read_pcd(path);
+  if (extension == ".pcd") return read_pcd(path, options);
   throw IoError(path + ": unknown scan file type '" + extension + "'; expected .bin or .pcd");
 }
 

@@ -33,6 +33,8 @@ ImageProjectionNode::ImageProjectionNode(ros::NodeHandle& nh, ros::NodeHandle& p
   skeleton_pub_ = nh.advertise<sensor_msgs::PointCloud2>("skeleton_cloud", 1);
   marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("degeneration_markers", 1);
   scan_sub_ = nh.subscribe("velodyne_points", queue, &ImageProjectionNode::on_scan, this);
+  diagnostics_.watch_input(scan_sub_.getTopic());
+  fit_ = std::make_unique<ConfigFitWarning>(config.source, scan_sub_.getTopic());
   ROS_INFO("image_projection: %s (%d x %d, %s beta0) on %s", config.source.c_str(),
            config.sensor.rows, config.sensor.columns, to_string(config.ambient.mode),
            scan_sub_.getTopic().c_str());
@@ -69,7 +71,7 @@ void ImageProjectionNode::on_scan(const sensor_msgs::PointCloud2ConstPtr& msg) {
 
 bool ImageProjectionNode::filter(const sensor_msgs::PointCloud2& msg) {
   const std::string& topic = scan_sub_.getTopic();
-  ros_bridge::from_ros(msg, topic, scan_);
+  ros_bridge::from_ros(msg, topic, scan_, {config_.sensor.scan_period});
   try {
     filter_.process(scan_, filtered_);
   } catch (const std::invalid_argument& e) {  // e.g. the config wants rings the cloud lacks
@@ -81,11 +83,15 @@ bool ImageProjectionNode::filter(const sensor_msgs::PointCloud2& msg) {
     drop("bad cloud", topic + ": " + problem);
     return false;
   }
+  if (const auto warning = fit_->check(config_.sensor, filtered_.segmentation.image,
+                                       rows_from_ring(config_.sensor, scan_.has_ring))) {
+    ROS_WARN("image_projection: %s", warning->c_str());
+  }
   return true;
 }
 
 void ImageProjectionNode::drop(const std::string& reason, const std::string& detail) {
-  diagnostics_.dropped(reason);
+  diagnostics_.dropped(reason, detail);
   warn_("scan dropped: " + detail);
 }
 
@@ -124,6 +130,8 @@ void ImageProjectionNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
   status.add("fragment smoothness", filtered_.fragment_smoothness);
   status.add("structure share", filtered_.structure_share);
   status.add("beta0 mode", to_string(config_.ambient.mode));
+  for (const std::string& problem : fit_->seen())
+    status.raise(ros_bridge::HealthLevel::kWarn, "the config does not fit: " + problem);
 }
 
 int run_image_projection(int argc, char** argv) {

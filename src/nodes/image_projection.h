@@ -6,6 +6,7 @@
 #include <sensor_msgs/PointCloud2.h>
 
 #include "adaptive_lego_loam/core/ambient/ambient_filter.h"
+#include "adaptive_lego_loam/core/projection/config_fit.h"
 #include "adaptive_lego_loam/ros/node_config.h"
 #include "adaptive_lego_loam/ros/node_diagnostics.h"
 #include "adaptive_lego_loam/ros/node_logging.h"
@@ -29,6 +30,7 @@ class ImageProjectionNode {
   Scan scan_;  // the latest message's points; its buffer is reused
   AmbientFilterResult filtered_;
   bool filtered_once_ = false;
+  std::unique_ptr<ConfigFitWarning> fit_;  // made once the topic is known
   ros_bridge::FrameNames frames_;
   ros_bridge::ThrottledWarning warn_;
   ros_bridge::StageSummary summary_;

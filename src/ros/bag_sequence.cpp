@@ -12,7 +12,8 @@ namespace {
 
 class BagSequence : public ScanSequence {
  public:
-  BagSequence(const std::string& path, const std::string& topic) : path_(path), topic_(topic) {
+  BagSequence(const std::string& path, const std::string& topic, const DecodeOptions& options)
+      : path_(path), topic_(topic), options_(options) {
     try {
       bag_.open(path, rosbag::bagmode::Read);
     } catch (const rosbag::BagException& e) {
@@ -39,7 +40,7 @@ class BagSequence : public ScanSequence {
       throw IoError(path_ + ": topic " + topic_ + " holds " + data_type +
                     ", expected sensor_msgs/PointCloud2");
     }
-    return from_ros(*cloud, path_ + ":" + topic_);
+    return from_ros(*cloud, path_ + ":" + topic_, options_);
   }
   int size() const override { return static_cast<int>(view_->size()); }
   std::string describe() const override {
@@ -65,6 +66,7 @@ class BagSequence : public ScanSequence {
   }
 
   std::string path_, topic_;
+  DecodeOptions options_;
   rosbag::Bag bag_;
   std::unique_ptr<rosbag::View> view_;
   rosbag::View::iterator position_;
@@ -72,8 +74,9 @@ class BagSequence : public ScanSequence {
 
 }  // namespace
 
-std::unique_ptr<ScanSequence> open_bag_sequence(const std::string& path, const std::string& topic) {
-  return std::make_unique<BagSequence>(path, topic);
+std::unique_ptr<ScanSequence> open_bag_sequence(const std::string& path, const std::string& topic,
+                                                const DecodeOptions& options) {
+  return std::make_unique<BagSequence>(path, topic, options);
 }
 
 }  // namespace adaptive_lego_loam::ros_bridge

@@ -2,18 +2,18 @@
 
 #include <cstring>
 
-#include "adaptive_lego_loam/io/point_fields.h"
-
 namespace adaptive_lego_loam::ros_bridge {
 
-Scan from_ros(const sensor_msgs::PointCloud2& msg, const std::string& source) {
+Scan from_ros(const sensor_msgs::PointCloud2& msg, const std::string& source,
+              const DecodeOptions& options) {
   Scan scan;
-  from_ros(msg, source, scan);
+  from_ros(msg, source, scan, options);
   return scan;
 }
 
-void from_ros(const sensor_msgs::PointCloud2& msg, const std::string& source, Scan& scan) {
-  decode_points(packed_points(msg), source, scan);
+void from_ros(const sensor_msgs::PointCloud2& msg, const std::string& source, Scan& scan,
+              const DecodeOptions& options) {
+  decode_points(packed_points(msg), source, scan, options);
   scan.stamp = msg.header.stamp.toSec();
 }
 

@@ -36,6 +36,15 @@ LidarModel::LidarModel(const SensorParams& sensor, const SimSensorOptions& optio
     const double offset = sensor_.beam_offsets_m.empty() ? 0.0 : sensor_.beam_offsets_m[beam];
     beam_origins_.emplace_back(0.0, 0.0, offset);
   }
+  rings_.assign(sensor_.rows, -1);
+  for (int ring = 0; ring < static_cast<int>(sensor_.ring_to_row.size()); ++ring) {
+    const int row = sensor_.ring_to_row[ring];
+    if (row >= 0 && rings_[row] < 0) rings_[row] = ring;
+  }
+  for (int beam = 0; beam < sensor_.rows; ++beam) {
+    if (sensor_.ring_to_row.empty()) rings_[beam] = beam;
+    check(rings_[beam] >= 0, "sensor.ring_to_row maps no ring to row " + std::to_string(beam));
+  }
   for (int column = 0; column < options_.columns; ++column) {
     cos_azimuth_.push_back(std::cos(azimuth(column)));
     sin_azimuth_.push_back(std::sin(azimuth(column)));

@@ -192,7 +192,7 @@ bool LidarSimulator::add_return(const Hit& hit, const Eigen::Vector3f& direction
   point.z = static_cast<float>(local.z());
   // In [0, 1] as KITTI's reflectance: Lambertian, from the surface's reflectivity.
   point.intensity = static_cast<float>(hit.reflectivity * cos_incidence);
-  point.ring = beam;
+  point.ring = model_.ring(beam);
   out.scan.points.push_back(point);
   out.labels.push_back(hit.label);
   return true;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
@@ -22,6 +23,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/projection/config_fit.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "adaptive_lego_loam/io/progress.h"
@@ -32,6 +34,7 @@
 #include "adaptive_lego_loam/sim/motion_sensor_faults.h"
 #include "adaptive_lego_loam/sim/run_description.h"
 #include "adaptive_lego_loam/sim/scenario.h"
+#include "adaptive_lego_loam/sim/sensor_presets.h"
 #include "adaptive_lego_loam/sim/sequence_writer.h"
 #include "adaptive_lego_loam/sim/simulator.h"
 #include "adaptive_lego_loam/sim/wheel_odometry_model.h"
@@ -52,10 +55,10 @@ struct Options {
   std::optional<uint64_t> scene_seed;
   int laps = 1;
   std::optional<int> columns;
-  double range_noise = 0.02;
+  std::optional<double> range_noise;
   std::optional<double> beam_divergence;
   std::optional<std::string> motion_distortion, rough_road;
-  std::optional<double> speed, leaf_jitter, foliage_density;
+  std::optional<double> speed, leaf_jitter, foliage_density, scan_period;
   std::optional<double> sensor_height;
   bool identical_houses = false;
   bool overwrite = false;
@@ -72,16 +75,10 @@ const std::vector<std::string> kMotionErrors = {
     "all",         "none",        "imu-noise",  "imu-bias-walk", "imu-turn-on-bias",
     "wheel-scale", "wheel-noise", "wheel-slips"};
 
-// The sensor's config and its firings per turn: the VLP-16 fires 1800 times per turn at 10 Hz,
-// as its config's columns; the HDL-64E about 2083 times (KITTI's config has 2200 columns of
-// range-image headroom, not firings).
+// The sensor's config: the preset's unless --config names another.
 void resolve_sensor(Options& o) {
   if (o.config_path.empty())
-    o.config_path = std::string(CONFIG_DIR) + (o.sensor == "vlp16" ? "/vlp16.yaml" : "/kitti.yaml");
-}
-
-int default_columns(const Options& o, const SensorParams& sensor) {
-  return o.sensor == "hdl64e" ? 2083 : sensor.columns;
+    o.config_path = std::string(CONFIG_DIR) + "/" + sensor_preset(o.sensor).config_file;
 }
 
 bool on_off(const std::optional<std::string>& value, bool fallback) {
@@ -297,6 +294,34 @@ class BagOutput {
   ros::Time latest_;
 };
 
+// The shipped configs (config/*.yaml) that read what was written: the folder's scans (no ring
+// field) and the bag's clouds (ring field).
+void print_matching_configs(const SensorParams& sensor, int firings, bool bag) {
+  std::vector<std::string> paths;
+  for (const auto& entry : std::filesystem::directory_iterator(CONFIG_DIR)) {
+    if (entry.path().extension() == ".yaml") paths.push_back(entry.path().string());
+  }
+  std::sort(paths.begin(), paths.end());
+  for (const bool ring_field : {false, true}) {
+    if (ring_field && !bag) continue;
+    std::string names;
+    for (const std::string& path : paths) {
+      try {
+        if (config_reads(load_config(path).sensor, sensor, firings, ring_field)) {
+          names += (names.empty() ? " config/" : ", config/") +
+                   std::filesystem::path(path).filename().string();
+        }
+      } catch (const ConfigError&) {
+      }
+    }
+    std::printf(
+        "lidar_sim: %s fit%s\n",
+        ring_field ? "the bag's clouds (with a ring field)"
+                   : "the scans in velodyne/ (no ring field)",
+        names.empty() ? " none of the shipped configs: derive_config measures one" : names.c_str());
+  }
+}
+
 void print_class_shares(const std::map<uint16_t, long>& counts, long total) {
   std::printf("lidar_sim: points per class:");
   for (const auto& [semantic, count] : counts) {
@@ -308,12 +333,12 @@ void print_class_shares(const std::map<uint16_t, long>& counts, long total) {
 
 int run(Options& o) {
   resolve_sensor(o);
-  const Config config = load_config(o.config_path);
-  SimSensorOptions sensor_options;
-  sensor_options.columns = o.columns.value_or(default_columns(o, config.sensor));
-  sensor_options.range_noise_m = o.range_noise;
-  // The sensors' manuals give about 3 mrad (VLP-16) and 2 mrad (HDL-64E).
-  sensor_options.beam_divergence_mrad = o.beam_divergence.value_or(o.sensor == "vlp16" ? 3.0 : 2.0);
+  Config config = load_config(o.config_path);
+  if (o.scan_period) config.sensor.scan_period = *o.scan_period;
+  SimSensorOptions sensor_options = preset_options(sensor_preset(o.sensor), config.sensor);
+  if (o.columns) sensor_options.columns = *o.columns;
+  if (o.range_noise) sensor_options.range_noise_m = *o.range_noise;
+  if (o.beam_divergence) sensor_options.beam_divergence_mrad = *o.beam_divergence;
   // KITTI ships de-skewed scans (its config says deskewed: true); a raw VLP-16 does not.
   sensor_options.motion_distortion = on_off(o.motion_distortion, !config.sensor.deskewed);
   const LidarModel model(config.sensor, sensor_options);
@@ -387,6 +412,7 @@ int run(Options& o) {
   writer.finish(run_yaml(description));
 
   print_class_shares(class_counts, points);
+  print_matching_configs(config.sensor, model.columns(), bag != nullptr);
   std::printf("lidar_sim: %.0f points per frame; ray casting %.2f s\n",
               static_cast<double>(points) / o.frames, simulator.ray_casting_seconds());
   // CPU time too: on a shared machine the wall clock also counts other processes' turns.
@@ -412,9 +438,10 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::IsMember(scenario_names()));
   app.add_option("--sensor", o.sensor,
-                 "vlp16 (config/vlp16.yaml) or hdl64e (KITTI's, config/kitti.yaml)")
+                 "vlp16, hdl64e (KITTI's, config/kitti.yaml), os0_64, os1_64, os1_128, os2_128, "
+                 "pandar_xt32, pandar_qt64 or rs_helios_32 (config/SENSOR.yaml)")
       ->required()
-      ->check(CLI::IsMember({"vlp16", "hdl64e"}));
+      ->check(CLI::IsMember(sensor_preset_names()));
   app.add_option("--config", o.config_path, "sensor config to take the beam geometry from instead");
   app.add_option("--frames", o.frames, "number of scans")
       ->required()
@@ -436,17 +463,22 @@ int main(int argc, char** argv) {
   app.add_option("--bag", o.bag,
                  "also write a rosbag: /velodyne_points (x y z intensity ring time) "
                  "and /ground_truth (nav_msgs/Odometry)");
-  app.add_option("--columns", o.columns, "firings per turn (default: 1800 vlp16, 2083 hdl64e)")
+  app.add_option("--scan-period", o.scan_period,
+                 "seconds a turn (default: the config's scan_period; 0.05 at 20 Hz, 0.2 at 5 Hz); "
+                 "with --columns for a sensor whose firings per turn change with the rate")
+      ->check(CLI::Range(0.01, 1.0));
+  app.add_option("--columns", o.columns,
+                 "firings per turn (default: the config's columns; 2083 for hdl64e)")
       ->check(CLI::Range(16, 20000));
   app.add_option("--range-noise", o.range_noise,
-                 "standard deviation of the range error, m (default 0.02)")
+                 "standard deviation of the range error, m (default: the sensor's, 0.01-0.03)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--beam-divergence", o.beam_divergence,
                  "beam divergence, mrad: echoes within a footprint mix at edges and in foliage "
-                 "(default: 3 vlp16, 2 hdl64e; 0: thin beams)")
+                 "(default: the sensor's, 1.6-6.1; 3 vlp16, 2 hdl64e; 0: thin beams)")
       ->check(CLI::Range(0.0, 50.0));
   app.add_option("--motion-distortion", o.motion_distortion,
-                 "on|off (default: on for vlp16, off for hdl64e, whose KITTI scans are de-skewed)")
+                 "on|off (default: off when the config says deskewed, as KITTI's, else on)")
       ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--rough-road", o.rough_road,
                  "on|off: shake the sensor (default: on for vegetation)")

@@ -18,6 +18,7 @@
 #include "adaptive_lego_loam/core/common/scan_stamps.h"
 #include "adaptive_lego_loam/core/odometry/observability.h"
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/core/projection/config_fit.h"
 #include "adaptive_lego_loam/io/atomic_files.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/map_files.h"
@@ -147,10 +148,12 @@ nlohmann::json motion_sensors_summary(const MotionSensorsStatus& status) {
   return summary;
 }
 
-std::unique_ptr<ScanSequence> open_sequence(const Options& options) {
-  if (fs::is_directory(options.input)) return open_folder_sequence(options.input);
+std::unique_ptr<ScanSequence> open_sequence(const Options& options, const SensorParams& sensor) {
+  if (fs::is_directory(options.input)) {
+    return open_folder_sequence(options.input, sensor.scan_period);
+  }
   if (fs::path(options.input).extension() == ".bag") {
-    return ros_bridge::open_bag_sequence(options.input, options.topic);
+    return ros_bridge::open_bag_sequence(options.input, options.topic, {sensor.scan_period});
   }
   throw IoError(options.input +
                 ": expected a KITTI sequence folder, a folder of .bin/.pcd scans "
@@ -381,7 +384,7 @@ int run(const Options& options) {
   }
   // A map folder that cannot take the map stops the run now, not after it.
   if (!options.save_map.empty()) check_map_folder(options.save_map);
-  std::unique_ptr<ScanSequence> sequence = open_sequence(options);
+  std::unique_ptr<ScanSequence> sequence = open_sequence(options, config.sensor);
   MotionSensorFeed motion_sensors(options, config);
   std::unique_ptr<Pipeline> pipeline = make_pipeline(options, config);
   Outputs outputs(options.output);
@@ -397,6 +400,7 @@ int run(const Options& options) {
   int frames = 0, empty_scans = 0, motion_gated_scans = 0, skipped_scans = 0;
   int odometry_rejected_motions = 0;
   ScanStamps stamps(config.sensor.scan_period);
+  ConfigFitWarning fit(config.source, options.input);
   LocalizationCounts localization;
   std::optional<double> last_stamp;
   std::string failure;
@@ -416,6 +420,11 @@ int run(const Options& options) {
       last_stamp = scan->stamp;
       motion_sensors.feed_until(scan->stamp, *pipeline);
       const FrameResult& result = pipeline->process(*scan);
+      if (const auto warning =
+              fit.check(config.sensor, pipeline->filter_result().segmentation.image,
+                        rows_from_ring(config.sensor, scan->has_ring))) {
+        std::fprintf(stderr, "\nrun_sequence: warning: %s\n", warning->c_str());
+      }
       heap_trimmer.after_scan();
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
@@ -468,6 +477,7 @@ int run(const Options& options) {
   summary["frames"] = frames;
   summary["scans_without_valid_points"] = empty_scans;
   summary["skipped_scans"] = skipped_scans;
+  summary["config_fit"] = fit.seen();  // what of the config does not fit the scans (empty: all)
   summary["input_stamps"] = {{"gaps", stamps.gaps()},
                              {"missing_scans", stamps.missing()},
                              {"duplicates", stamps.duplicates()},

@@ -15,6 +15,7 @@
 #include "adaptive_lego_loam/core/clustering/segmenter.h"
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/core/common/timing.h"
+#include "adaptive_lego_loam/core/projection/config_fit.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/scan_files.h"
 #include "tool_main.h"
@@ -132,9 +133,14 @@ int main(int argc, char** argv) {
     std::printf("%-24s %8s %8s %8s %8s %10s %8s %8s %8s %8s %8s\n", "frame", "points", "valid",
                 "ground", "kept", "clusters", "proj_ms", "grnd_ms", "depth_ms", "cloud_ms",
                 "total_ms");
+    ConfigFitWarning fit(config_path, files.size() == 1 ? files.front() : "these scans");
     for (const std::string& file : files) {
       const Scan scan = read_scan_file(file);
       filter.process(scan, filtered);
+      if (const auto warning = fit.check(config.sensor, result.image,
+                                         rows_from_ring(config.sensor, scan.has_ring))) {
+        std::fprintf(stderr, "segment_scans: warning: %s\n", warning->c_str());
+      }
       const std::string name = std::filesystem::path(file).filename().string();
       const std::string problem = projection_problem(result.image.stats());
       if (!problem.empty()) {

@@ -270,3 +270,41 @@ TEST(PointFields, RingBeyondInt32ReadsAsNoLaser) {
   EXPECT_EQ(scan.points[0].ring, -1);
   EXPECT_EQ(scan.points[1].ring, 12);
 }
+
+// Hesai's and RoboSense's absolute float64 stamps become offsets from the sweep's earliest point,
+// to the microsecond; relative float64 times stay as they are.
+TEST(PointFields, ClockStampsBecomeOffsetsFromTheEarliest) {
+  struct Record {
+    float x, y, z;
+    double timestamp;
+  } __attribute__((packed));
+  const Record clock[3] = {
+      {1, 0, 0, 1712345678.100250}, {2, 0, 0, 1712345678.000125}, {3, 0, 0, 1712345678.050000}};
+  const std::vector<FieldDescription> fields = {
+      {"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"timestamp", 12, 8, 1}};
+  const Scan scan = decode_points(packed_rows(clock, fields), "clock");
+  ASSERT_TRUE(scan.has_time);
+  EXPECT_NEAR(scan.points[0].time, 0.100125, 1e-7);
+  EXPECT_EQ(scan.points[1].time, 0.f);
+  EXPECT_NEAR(scan.points[2].time, 0.049875, 1e-7);
+  const Record offsets[2] = {{1, 0, 0, 0.075}, {2, 0, 0, 0.025}};
+  const Scan relative = decode_points(packed_rows(offsets, fields), "offsets");
+  EXPECT_EQ(relative.points[0].time, 0.075f);
+  EXPECT_EQ(relative.points[1].time, 0.025f);
+}
+
+// The legacy OS1 driver's float32 t is the column's share of the sweep: seconds with the sweep's
+// period, left out without it.
+TEST(PointFields, AFloatTIsAShareOfTheSweep) {
+  struct Record {
+    float x, y, z, t;
+  };
+  const Record records[2] = {{1, 2, 3, 0.5f}, {4, 5, 6, 0.25f}};
+  const std::vector<FieldDescription> fields = {
+      {"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"t", 12, 7, 1}};
+  const Scan at_20_hz = decode_points(packed_rows(records, fields), "os1", {0.05});
+  ASSERT_TRUE(at_20_hz.has_time);
+  EXPECT_FLOAT_EQ(at_20_hz.points[0].time, 0.025f);
+  EXPECT_FLOAT_EQ(at_20_hz.points[1].time, 0.0125f);
+  EXPECT_FALSE(decode_points(packed_rows(records, fields), "os1").has_time);
+}

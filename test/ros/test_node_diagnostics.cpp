@@ -97,3 +97,62 @@ TEST(ScanHealth, SilenceAfterTheFirstScanAndASlowStageWarn) {
   EXPECT_EQ(silent.level, HealthLevel::kWarn);
   EXPECT_NE(silent.message.find("no scan for 4 s"), std::string::npos) << silent.message;
 }
+
+// A node started on the wrong topic (or before its driver) says so after five sensor periods
+// (at least a second): a warning naming the topic, not "waiting" at level OK however long.
+TEST(ScanHealth, AWatchedInputThatStaysSilentWarnsNamingTheTopic) {
+  ScanHealth health(0.1);
+  health.watch_input("/velodyne_points");
+  health.close_period(0.0);
+  EXPECT_EQ(health.input_problem(0.9), "");
+  EXPECT_EQ(health.close_period(0.9).level, HealthLevel::kOk);
+  EXPECT_EQ(health.input_problem(3.0), "no scan on /velodyne_points for 3 s");
+  const HealthStatus status = health.close_period(3.0);
+  EXPECT_EQ(status.level, HealthLevel::kWarn);
+  EXPECT_EQ(status.message, "no scan on /velodyne_points for 3 s");
+  // At 2 Hz the wait is five periods.
+  ScanHealth slow(0.5);
+  slow.watch_input("/points");
+  slow.close_period(0.0);
+  EXPECT_EQ(slow.input_problem(2.0), "");
+  EXPECT_NE(slow.input_problem(2.6), "");
+}
+
+TEST(ScanHealth, CloudsThatCannotBeUsedAreAnInputProblemToo) {
+  ScanHealth health(0.1);
+  health.watch_input("/ouster/points");
+  health.close_period(0.0);
+  for (int i = 0; i < 12; ++i) {
+    health.received(100.0 + 0.1 * i, 0.1 * i);
+    health.dropped("bad cloud", "/ouster/points: no valid point among 65536: 65536 out of range");
+  }
+  const std::string problem = health.input_problem(1.5);
+  EXPECT_EQ(problem,
+            "12 scans on /ouster/points, none usable (the last: /ouster/points: no valid point "
+            "among 65536: 65536 out of range)");
+  const HealthStatus status = health.close_period(1.5);
+  EXPECT_EQ(status.level, HealthLevel::kError);
+  EXPECT_NE(status.message.find(problem), std::string::npos) << status.message;
+  // One scan used and the input is fine, whatever comes after.
+  health.received(102.0, 2.0);
+  health.processed(times_of(20.0));
+  EXPECT_EQ(health.input_problem(10.0), "");
+}
+
+TEST(ScanHealth, AnUnwatchedInputWaitsAtLevelOk) {
+  ScanHealth health(0.1);
+  health.close_period(0.0);
+  const HealthStatus status = health.close_period(30.0);
+  EXPECT_EQ(status.level, HealthLevel::kOk);
+  EXPECT_EQ(status.message, "waiting for the first scan");
+}
+
+TEST(NoInputWarning, NamesTheCloudTopicsThatExistOrTheirAbsence) {
+  EXPECT_EQ(no_input_warning("image_projection", "no scan on /velodyne_points for 2 s",
+                             {"/ouster/points", "/rslidar_points"}),
+            "image_projection: no scan on /velodyne_points for 2 s; PointCloud2 topics published: "
+            "/ouster/points /rslidar_points (cloud_topic:= names the driver's)");
+  EXPECT_EQ(no_input_warning("image_projection", "no scan on /velodyne_points for 2 s", {}),
+            "image_projection: no scan on /velodyne_points for 2 s; no PointCloud2 topic is "
+            "published: is the driver running?");
+}

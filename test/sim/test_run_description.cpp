@@ -28,13 +28,11 @@ RunDescription with_motion_sensors() {
 }  // namespace
 
 TEST(RunDescription, SensorsYamlIsAConfigFragment) {
+  // Given after a sensor's config, its sections replace the config's.
   const RunDescription run = with_motion_sensors();
-  std::ifstream kitti(std::string(CONFIG_DIR) + "/kitti.yaml");
-  std::ostringstream text;
-  text << kitti.rdbuf() << "\n" << sensors_yaml(run);
-  const std::string path = adaptive_lego_loam::test::temp_path("with_sensors.yaml");
-  std::ofstream(path) << text.str();
-  const Config config = load_config(path);
+  const std::string path = adaptive_lego_loam::test::temp_path("sensors.yaml");
+  std::ofstream(path) << sensors_yaml(run);
+  const Config config = load_config({std::string(CONFIG_DIR) + "/kitti.yaml", path});
   EXPECT_EQ(config.imu.extrinsic_rpy_deg, std::vector<double>({180.0, 2.5, 90.0}));
   EXPECT_EQ(config.imu.extrinsic_xyz_m, std::vector<double>({-0.12, 0.08, -0.18}));
   EXPECT_NEAR(config.imu.gyro_noise_density / adis16448().gyro_noise_density, 1.0, 1e-9);

@@ -13,7 +13,8 @@ using adaptive_lego_loam::test::run_command;
 namespace {
 
 const std::vector<std::string> kTools = {"run_sequence", "evaluate_odometry", "segmentation_bench",
-                                         "lidar_sim",    "kitti_to_bag",      "segment_scans"};
+                                         "lidar_sim",    "kitti_to_bag",      "segment_scans",
+                                         "derive_config"};
 
 std::string tool(const std::string& name) {
   return std::string(BIN_DIR) + "/" + name;
@@ -59,6 +60,7 @@ TEST(CommandLines, BadInputExitsOneWithOneLineNamingTheFile) {
       {"segmentation_bench", "--points " + missing + " --labels " + missing + " --method all"},
       {"kitti_to_bag", "--input " + missing + " --output /tmp/alego_x.bag"},
       {"segment_scans", "--config " + config + " " + missing + "/scan.bin"},
+      {"derive_config", "--input " + missing + ".bag --output /tmp/alego_x.yaml"},
       {"lidar_sim",
        "--scenario urban --sensor vlp16 --frames 2 --output /tmp/alego_sim "
        "--trajectory " +

@@ -131,3 +131,30 @@ TEST(RunSequenceOutputs, ATimeGapOfMinutesIsCountedAndChangesNoPose) {
   EXPECT_EQ(summary["input_stamps"]["missing_scans"], 1800);
   EXPECT_EQ(read_file(gap / "poses_kitti.txt"), read_file(plain / "poses_kitti.txt"));
 }
+
+// A config that does not fit the scans is said, once, on stderr and in summary.json: KITTI's
+// scans with config/hdl64e.yaml (KITTI's beams without their origins) run, but not silently.
+TEST(RunSequenceOutputs, AConfigThatDoesNotFitTheScansIsSaid) {
+  const std::string input = std::string(TEST_DATA_DIR) + "/kitti_seq07";
+  const fs::path out = temp_path("config_fit");
+  fs::remove_all(out);
+  const auto [status, output] =
+      run_command(std::string(BIN_DIR) + "/run_sequence --config " + std::string(CONFIG_DIR) +
+                  "/hdl64e.yaml --input " + input + " --output " + out.string());
+  ASSERT_EQ(status, 0) << output;
+  const std::string warning = "hdl64e.yaml does not fit the clouds of " + input;
+  const std::size_t first = output.find(warning);
+  EXPECT_NE(first, std::string::npos) << output;
+  EXPECT_EQ(output.find(warning, first + 1), std::string::npos) << "warned more than once";
+  EXPECT_NE(output.find("derive_config"), std::string::npos);
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_FALSE(summary["config_fit"].empty());
+
+  const fs::path fitting = temp_path("config_fits");
+  fs::remove_all(fitting);
+  const auto [kitti_status, kitti_output] =
+      run_command(run_sequence("--input " + input + " --output " + fitting.string()));
+  ASSERT_EQ(kitti_status, 0) << kitti_output;
+  EXPECT_EQ(kitti_output.find("does not fit"), std::string::npos) << kitti_output;
+  EXPECT_TRUE(nlohmann::json::parse(read_file(fitting / "summary.json"))["config_fit"].empty());
+}

@@ -59,13 +59,30 @@ PackedPoints packed_points(const PointCloud2& cloud) {
   return packed;
 }
 
+// What the records alone do not say.
+struct DecodeOptions {
+  // s: the sweep's period, which turns a time field given as a fraction of the sweep (the legacy
+  // OS1 driver's float t) into seconds; 0: unknown, and such a time field is left out.
+  double sweep_period = 0.0;
+};
+
+// The name of a PointField datatype ("float32", "uint16", ...), or "datatype N" for another N.
+std::string field_type_name(uint8_t datatype);
+
 // Accepted names: x, y, z (required); intensity | reflectance | i; ring | channel (any integer
-// type); time (float seconds from the sweep start) | t | time_stamp | timestamp (integer
-// nanoseconds, or float seconds). Throws IoError naming `source` when a required field is
-// missing, has a non-numeric type or lies outside the record, when a row is longer than the row
-// step, or when the data is short. A ring value beyond int32 reads as -1 (no laser).
-Scan decode_points(const PackedPoints& packed, const std::string& source);
+// type); time | t | time_stamp | timestamp. A time field becomes seconds since the sweep's start:
+// integer types are nanoseconds (Ouster's t, nebula's time_stamp), a float32 t is a fraction of
+// the sweep (the legacy OS1 driver's; see DecodeOptions), other floats are seconds; float64 stamps
+// of a clock (Hesai's and RoboSense's absolute timestamp, 1e6 s and more) become offsets from the
+// earliest. Throws IoError naming `source` when a required field is missing, has a non-numeric
+// type or lies outside the record, when a ring field is not of an integer type (naming the type
+// found and the types expected), when a row is longer than the row step, or when the data is
+// short. An optional field of a type that cannot be read (8-byte integers in a PCD) is passed
+// over. A ring value beyond int32 reads as -1 (no laser).
+Scan decode_points(const PackedPoints& packed, const std::string& source,
+                   const DecodeOptions& options = {});
 // The same into `scan`, whose point buffer is reused (its stamp is left as it was).
-void decode_points(const PackedPoints& packed, const std::string& source, Scan& scan);
+void decode_points(const PackedPoints& packed, const std::string& source, Scan& scan,
+                   const DecodeOptions& options = {});
 
 }  // namespace adaptive_lego_loam

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/scan.h"
+#include "adaptive_lego_loam/io/point_fields.h"
 
 namespace adaptive_lego_loam {
 
@@ -18,12 +19,13 @@ void write_kitti_bin(const std::string& path, const Scan& scan);
 // decode_points(). Throws IoError as "<path>:<line>: ..." for a bad header line, and naming the
 // file and what was expected when the data does not match the header (POINTS, the fields' SIZE
 // and COUNT) or a value does not parse as its TYPE.
-Scan read_pcd(const std::string& path);
+Scan read_pcd(const std::string& path, const DecodeOptions& options = {});
 // The same from the file's bytes; `source` names them in messages.
-Scan parse_pcd(const std::string& bytes, const std::string& source);
+Scan parse_pcd(const std::string& bytes, const std::string& source,
+               const DecodeOptions& options = {});
 
 // By extension: .bin (KITTI) or .pcd.
-Scan read_scan_file(const std::string& path);
+Scan read_scan_file(const std::string& path, const DecodeOptions& options = {});
 
 // The .bin and .pcd files directly in `dir`, sorted by name. Throws IoError when `dir` is not a
 // readable directory.

@@ -8,7 +8,8 @@
 //   ERROR  scans (or parts of scans) arrived but none was processed, or the node says so
 //          (localization lost);
 //   WARN   scans were dropped or went missing, the mean frame took longer than the sensor period,
-//          or no scan came for 2 s after the first;
+//          or no scan came for 2 s after the first; for a node watching its input (the driver's
+//          clouds), no scan, or none it could use, since it started a few sensor periods ago;
 //   OK     otherwise (also before the first scan).
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -48,7 +49,16 @@ class ScanHealth {
   // A scan arrived with this stamp (s); returns how its stamp follows the last one.
   StampStep received(double stamp, double now_s);
   void processed(const StageTimes& times);
-  void dropped(const std::string& reason);
+  // `detail`: why, as logged (the input's problem names the last).
+  void dropped(const std::string& reason, const std::string& detail = "");
+
+  // Watches the input `topic`: once no scan has been used since the first period started, for
+  // five sensor periods and at least a second, input_problem() says so and the status warns.
+  void watch_input(const std::string& topic) { input_topic_ = topic; }
+  // "no scan on T for N s" or "N scans on T, none usable (the last: ...)"; empty once a scan was
+  // used, before the wait is over, or when the input is not watched.
+  std::string input_problem(double now_s) const;
+  double input_wait() const { return std::max(5.0 * period_, 1.0); }
   // The status of the period since the last call; a new period starts.
   HealthStatus close_period(double now_s);
 
@@ -59,8 +69,10 @@ class ScanHealth {
  private:
   double period_;
   ScanStamps stamps_;
-  std::optional<double> last_received_s_, period_start_s_;
+  std::optional<double> last_received_s_, period_start_s_, started_s_;
   int received_ = 0, processed_ = 0;
+  long received_total_ = 0, processed_total_ = 0;
+  std::string input_topic_, last_drop_;
   long missing_at_period_start_ = 0;
   StageTotals stage_totals_;
   std::map<std::string, long> dropped_total_, dropped_in_period_;
@@ -76,17 +88,33 @@ class NodeDiagnostics {
 
   StampStep received(const ros::Time& stamp) { return health_.received(stamp.toSec(), now()); }
   void processed(const StageTimes& times) { health_.processed(times); }
-  void dropped(const std::string& reason) { health_.dropped(reason); }
+  void dropped(const std::string& reason, const std::string& detail = "") {
+    health_.dropped(reason, detail);
+  }
+  // As ScanHealth::watch_input; the input's problem is also logged once, with the PointCloud2
+  // topics the master knows (no_input_warning).
+  void watch_input(const std::string& topic) { health_.watch_input(topic); }
   const ScanHealth& health() const { return health_; }
 
  private:
   static double now() { return steady_seconds(); }
   void fill(diagnostic_updater::DiagnosticStatusWrapper& status);
 
+  std::string node_;
   ScanHealth health_;
+  bool input_problem_logged_ = false;
   Extra extra_;
   diagnostic_updater::Updater updater_;
   ros::SteadyTimer timer_;
 };
+
+// The line a node logs when its input says nothing usable: `problem`, then where clouds are, of
+// `cloud_topics` (the PointCloud2 topics published, the graph's own outputs left out), or that
+// there are none.
+std::string no_input_warning(const std::string& node, const std::string& problem,
+                             const std::vector<std::string>& cloud_topics);
+
+// The PointCloud2 topics the master knows, but the stages' own outputs (segmented_cloud, ...).
+std::vector<std::string> published_cloud_topics();
 
 }  // namespace adaptive_lego_loam::ros_bridge

@@ -41,7 +41,10 @@ class LidarModel {
   int beams() const { return static_cast<int>(beam_origins_.size()); }
   int columns() const { return options_.columns; }
 
-  // Beam `beam` (0 = lowest) leaves from here, in the sensor frame.
+  // The ring the driver reports beam `beam` (0 = lowest) with: the config's ring_to_row read
+  // backwards (Ouster's drivers number rings from the top beam), else the beam.
+  int ring(int beam) const { return rings_[beam]; }
+  // Beam `beam` leaves from here, in the sensor frame.
   const Eigen::Vector3d& beam_origin(int beam) const { return beam_origins_[beam]; }
   // Unit direction of beam `beam` at column `column`, sensor frame.
   Eigen::Vector3d direction(int beam, int column) const {
@@ -64,6 +67,7 @@ class LidarModel {
   SensorParams sensor_;
   SimSensorOptions options_;
   std::vector<Eigen::Vector3d> beam_origins_;
+  std::vector<int> rings_;
   std::vector<double> cos_elevation_, sin_elevation_;
   std::vector<double> cos_azimuth_, sin_azimuth_;
   double cos_full_return_ = 0.0, cos_no_return_ = 0.0;

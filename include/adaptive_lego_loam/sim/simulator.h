@@ -17,7 +17,7 @@
 namespace adaptive_lego_loam::sim {
 
 struct SimFrame {
-  Scan scan;  // sensor frame, with ring (= beam, 0 lowest) and time (s from the sweep's start)
+  Scan scan;  // sensor frame, with ring (LidarModel::ring) and time (s from the sweep's start)
   std::vector<uint32_t> labels;          // per point, SemanticKITTI packing
   std::vector<Eigen::Vector3f> normals;  // per point, sensor frame, unit, facing the sensor
   // Per point, the surface it came from without range noise (of a mixed echo, its strongest

@@ -12,8 +12,9 @@ void Segmenter::project_and_mark_ground(const Scan& scan, SegmentationResult& re
   projector_.project(scan, result.image);
   result.times.clear();
   result.times.add("projection", watch.lap_ms());
-  result.ground_points = mark_ground(result.image, sensor_.ground_rows, sensor_.mount_angle_deg,
-                                     params_.ground_slope_tolerance_deg, result.ground);
+  result.ground_points =
+      mark_ground(result.image, sensor_.ground_rows, sensor_.mount_angle_deg,
+                  params_.ground_slope_tolerance_deg, result.ground, params_.ground_row_gap_deg);
   result.times.add("ground", watch.lap_ms());
 }
 

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -192,6 +193,7 @@ void read_segmentation(SectionReader& in, SegmentationParams& s) {
   in.number("beta0_deg", s.beta0_deg, 0.1, 89.9);
   read_size_rule(in, s.size_rule);
   in.number("ground_slope_tolerance_deg", s.ground_slope_tolerance_deg, 0.0, 45.0);
+  in.number("ground_row_gap_deg", s.ground_row_gap_deg, 0.0, 10.0);
   in.number("ground_downsample", s.ground_downsample, 1, 100);
   in.number("outlier_downsample", s.outlier_downsample, 1, 100);
   in.reject_unknown_keys();
@@ -410,6 +412,23 @@ void read_wheel_odometry(SectionReader& in, WheelOdometryParams& wheel) {
   in.reject_unknown_keys();
 }
 
+// The per-scan settings, given for kReferenceScanPeriod, at the sensor's period: the same per
+// second. At the reference period nothing changes (not even by a rounding).
+void hold_per_second(Config& config) {
+  const double period = config.sensor.scan_period;
+  if (period == kReferenceScanPeriod) return;
+  const double scans = period / kReferenceScanPeriod;  // reference scans in one of this sensor's
+  const auto count = [scans](int reference) {
+    return reference > 0 ? std::max(1, static_cast<int>(std::lround(reference / scans))) : 0;
+  };
+  MappingParams& m = config.mapping;
+  m.max_motion_change *= scans;
+  m.max_motion_change_deg *= scans;
+  m.max_gated_scans = count(m.max_gated_scans);
+  config.localization.lost_after_scans = count(config.localization.lost_after_scans);
+  config.ambient.mu_smoothing = std::pow(config.ambient.mu_smoothing, scans);
+}
+
 void read_clustering_benchmark(SectionReader& in, ClusteringBenchmarkParams& b) {
   in.number("min_cluster_points", b.min_cluster_points, 1, 1000000);
   in.reject_unknown_keys();
@@ -547,6 +566,7 @@ Config config_from(const YAML::Node& root, const std::string& source) {
     if (!known.count(name)) throw ConfigError(source + ": " + name + ": is not a known section");
   }
   validate(config.sensor, source);
+  hold_per_second(config);
   return config;
 }
 

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include <algorithm>
 #include <fstream>
 #include <string>
@@ -24,7 +27,8 @@ const char* kMinimal = "sensor:\n  rows: 16\n  columns: 1800\n";
 }  // namespace
 
 TEST(Params, ShippedConfigsLoad) {
-  for (const char* name : {"vlp16", "hdl32", "hdl64e", "kitti", "kitti_16rings"}) {
+  for (const char* name : {"vlp16", "hdl32", "hdl64e", "kitti", "kitti_16rings", "os0_64", "os1_64",
+                           "os1_128", "os2_128", "pandar_xt32", "pandar_qt64", "rs_helios_32"}) {
     const std::string path = std::string(CONFIG_DIR) + "/" + name + ".yaml";
     SCOPED_TRACE(path);
     const Config config = load_config(path);
@@ -40,6 +44,21 @@ TEST(Params, ShippedConfigsLoad) {
   ASSERT_EQ(thinned.sensor.ring_to_row.size(), 64u);
   EXPECT_EQ(std::count(thinned.sensor.ring_to_row.begin(), thinned.sensor.ring_to_row.end(), -1),
             48);
+}
+
+// Ouster's drivers and the XT32's number rings from the top beam: their configs turn them round.
+TEST(Params, TopDownRingsAreTurnedRound) {
+  const Config os1 = load_config(std::string(CONFIG_DIR) + "/os1_128.yaml");
+  ASSERT_EQ(os1.sensor.ring_to_row.size(), 128u);
+  EXPECT_EQ(os1.sensor.ring_to_row.front(), 127);
+  EXPECT_EQ(os1.sensor.ring_to_row.back(), 0);
+  EXPECT_DOUBLE_EQ(os1.segmentation.ground_row_gap_deg, 1.0);
+  EXPECT_DOUBLE_EQ(
+      load_config(std::string(CONFIG_DIR) + "/vlp16.yaml").segmentation.ground_row_gap_deg, 0.0);
+  const std::string error =
+      error_of(std::string(kMinimal) + "segmentation:\n  ground_row_gap_deg: 11\n");
+  EXPECT_NE(error.find("segmentation.ground_row_gap_deg = 11 is out of range"), std::string::npos)
+      << error;
 }
 
 TEST(Params, RingToRowBelowMinusOneIsRejected) {
@@ -229,4 +248,37 @@ TEST(Params, LaterFilesReplaceKeysOfEarlierOnes) {
   EXPECT_EQ(merged.mapping.max_iterations, plain.mapping.max_iterations);
   EXPECT_DOUBLE_EQ(merged.imu.gyro_noise_density, plain.imu.gyro_noise_density);
   EXPECT_NE(merged.source.find(" + "), std::string::npos);
+}
+
+// A config's per-scan settings are given for 0.1 s scans and hold per second at any rate: at
+// 20 Hz the motion gate allows half the change per scan and holds twice the scans, mu is smoothed
+// with the same time constant; at 10 Hz nothing changes, not by a rounding.
+TEST(Params, PerScanSettingsHoldPerSecondAtAnyRate) {
+  std::ifstream file(std::string(CONFIG_DIR) + "/vlp16.yaml");
+  std::stringstream text;
+  text << file.rdbuf();
+  const std::string at_10_hz = text.str();
+  const auto at_period = [&](const std::string& period) {
+    std::string yaml = at_10_hz;
+    const std::string key = "  scan_period: 0.1\n";
+    yaml.replace(yaml.find(key), key.size(), "  scan_period: " + period + "\n");
+    return parse_config(yaml, "vlp16_" + period + ".yaml");
+  };
+  const Config ten = parse_config(at_10_hz, "vlp16.yaml");
+  EXPECT_EQ(ten.mapping.max_motion_change, 0.3);
+  EXPECT_EQ(ten.mapping.max_motion_change_deg, 5.0);
+  EXPECT_EQ(ten.mapping.max_gated_scans, 3);
+  EXPECT_EQ(ten.ambient.mu_smoothing, 0.8);
+  EXPECT_EQ(ten.localization.lost_after_scans, 5);
+  const Config twenty = at_period("0.05");
+  EXPECT_DOUBLE_EQ(twenty.mapping.max_motion_change, 0.15);
+  EXPECT_DOUBLE_EQ(twenty.mapping.max_motion_change_deg, 2.5);
+  EXPECT_EQ(twenty.mapping.max_gated_scans, 6);
+  EXPECT_EQ(twenty.localization.lost_after_scans, 10);
+  EXPECT_DOUBLE_EQ(twenty.ambient.mu_smoothing * twenty.ambient.mu_smoothing, 0.8);
+  const Config five = at_period("0.2");
+  EXPECT_DOUBLE_EQ(five.mapping.max_motion_change, 0.6);
+  EXPECT_EQ(five.mapping.max_gated_scans, 2);  // 1.5 rounded
+  EXPECT_EQ(five.localization.lost_after_scans, 3);
+  EXPECT_DOUBLE_EQ(five.ambient.mu_smoothing, 0.64);
 }

@@ -18,6 +18,13 @@ class ConfigError : public std::runtime_error {
 
 enum class RowSource { kAuto, kRing, kElevation };
 
+// The sensor period a config's per-scan settings are given for (s). At another period
+// parse_config scales them so that they hold per second: the motion gate's change per scan
+// (mapping.max_motion_change, max_motion_change_deg) in proportion, the scans it may hold
+// (max_gated_scans) and localization's lost_after_scans inversely, ambient_filter.mu_smoothing
+// to the same time constant (s^(period / 0.1)).
+constexpr double kReferenceScanPeriod = 0.1;
+
 struct SensorParams {
   std::string name = "unnamed";
   int rows = 16;
@@ -54,6 +61,8 @@ struct SegmentationParams {
   double beta0_deg = 60.0;  // LeGO-LOAM's segmentTheta
   ClusterSizeRule size_rule;
   double ground_slope_tolerance_deg = 10.0;
+  // The ground test pairs each row with the first at least this much higher (0: the next row).
+  double ground_row_gap_deg = 0.0;
   int ground_downsample = 5;   // keep every n-th ground column in the segmented cloud
   int outlier_downsample = 5;  // keep every n-th outlier column in the outlier cloud
 };
@@ -100,7 +109,8 @@ struct AmbientFilterParams {
   // Step 7: fragments smoother than the floor count as structure in proportion; 1 = never.
   double fragment_smoothness_floor = 1.0;
   double fragment_smooth_tolerance_m = 0.05;  // second difference of range along a row
-  // Step 8: exponential smoothing of mu over scans; 0 = none.
+  // Step 8: exponential smoothing of mu over scans; 0 = none. A file gives it for 0.1 s scans
+  // (kReferenceScanPeriod).
   double mu_smoothing = 0.0;
   // Step 9: from this mu on every cluster is kept however small, as with kNone; above 1 = never.
   double mu_keep_every_cluster = 2.0;
@@ -203,6 +213,7 @@ struct MappingParams {
   // The guess for scan-to-map: the odometry's motion, unless it differs from the previous scan's
   // mapped motion by more than this (m per scan) or max_motion_change_deg; then that motion
   // (constant velocity). 0 = off. A vehicle cannot change its speed by 0.3 m per scan at 10 Hz.
+  // A file gives these and max_gated_scans for 0.1 s scans (kReferenceScanPeriod).
   double max_motion_change = 0.0;
   double max_motion_change_deg = 0.0;
   // After this many scans in a row gated, the odometry's motion is taken again: a velocity that
@@ -345,7 +356,8 @@ struct LoopClosureParams {
 // the map.
 struct LocalizationParams {
   // Tracking holds while at least this share of the scan's features find a line or plane in the
-  // map; lost_after_scans scans in a row below it and the localization is lost.
+  // map; lost_after_scans scans in a row below it and the localization is lost (a file gives it
+  // for 0.1 s scans: kReferenceScanPeriod).
   double min_match_ratio = 0.3;
   int lost_after_scans = 5;
   // While lost (or at the start) the scan is aligned by ICP from the predicted pose to the map's
