@@ -73,7 +73,8 @@ SegmentedCloudMessages segmented_cloud_to_ros(const SegmentedCloud& cloud,
   SegmentedCloudMessages messages;
   messages.cloud = to_ros(cloud.points, cloud.row, header);
   messages.info = cloud_info_to_ros(cloud.info, header);
-  messages.outliers = to_ros(cloud.outliers, header, false);
+  // With their times: feature_association de-skews them as the segmented points.
+  messages.outliers = to_ros(cloud.outliers, header, true);
   return messages;
 }
 

@@ -126,6 +126,19 @@ std::string receive_error(const SegmentedCloudMessages& messages) {
 
 }  // namespace
 
+// feature_association de-skews the outliers by their times as the segmented points: without
+// them a raw sweep's outliers land elsewhere than offline.
+TEST(SegmentedCloudConversions, OutliersKeepTheirTimes) {
+  SegmentedCloud cloud = small_segmented_cloud();
+  cloud.outliers = {{9, 9, 9, 1, 0.05f}, {8, 9, 9, 1, 0.07f}};
+  const SegmentedCloudMessages messages = segmented_cloud_to_ros(cloud, header_at(1.0));
+  const ReceivedSegmentedCloud received =
+      segmented_cloud_from_ros(messages.cloud, messages.info, messages.outliers);
+  ASSERT_EQ(received.cloud.outliers.size(), 2u);
+  EXPECT_EQ(received.cloud.outliers[0].time, 0.05f);
+  EXPECT_EQ(received.cloud.outliers[1].time, 0.07f);
+}
+
 TEST(SegmentedCloudConversions, SmallCloudKeepsRowsInTheRingField) {
   const auto messages = segmented_cloud_to_ros(small_segmented_cloud(), header_at(2.0));
   const Scan scan = from_ros(messages.cloud, "test");

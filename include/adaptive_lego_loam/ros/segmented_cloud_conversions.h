@@ -18,7 +18,7 @@ namespace adaptive_lego_loam::ros_bridge {
 struct SegmentedCloudMessages {
   sensor_msgs::PointCloud2 cloud;  // x, y, z, intensity, ring (= range-image row), time
   CloudInfoMsg info;
-  sensor_msgs::PointCloud2 outliers;  // x, y, z, intensity
+  sensor_msgs::PointCloud2 outliers;  // x, y, z, intensity, ring, time
 };
 
 SegmentedCloudMessages segmented_cloud_to_ros(const SegmentedCloud& cloud,
