@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 #include <vector>
 
 namespace adaptive_lego_loam::ros_bridge {
@@ -52,8 +53,17 @@ std::string config_path(const ros::NodeHandle& private_nh) {
                     private_nh.resolveName("config"));
 }
 
+std::vector<std::string> config_paths(const ros::NodeHandle& private_nh) {
+  std::istringstream words(config_path(private_nh));
+  std::vector<std::string> paths;
+  for (std::string path; words >> path;)
+    paths.push_back(path);
+  return paths;
+}
+
 Config load_node_config(const ros::NodeHandle& private_nh) {
-  return load_config(config_path(private_nh));
+  const std::vector<std::string> paths = config_paths(private_nh);
+  return paths.size() == 1 ? load_config(paths.front()) : load_config(paths);
 }
 
 FrameNames load_frame_names(const ros::NodeHandle& private_nh) {

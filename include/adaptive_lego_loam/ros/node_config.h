@@ -11,6 +11,7 @@
 #include <exception>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "adaptive_lego_loam/core/common/params.h"
 
@@ -23,8 +24,11 @@ std::string package_config_dir();
 // ~config when set and not empty, else <config dir>/<~sensor>.yaml (~sensor defaults to vlp16).
 // Throws ConfigError naming the parameter and the known sensors when there is no such file.
 std::string config_path(const ros::NodeHandle& private_nh);
+// The same split at spaces: ~config may name several files, each later one's keys replacing the
+// earlier ones' (a sensor's config, then a robot's extrinsics and IMU), as run_sequence --config.
+std::vector<std::string> config_paths(const ros::NodeHandle& private_nh);
 
-// load_config(config_path(private_nh)): throws ConfigError naming the file, key and range.
+// load_config(config_paths(private_nh)): throws ConfigError naming the file, key and range.
 Config load_node_config(const ros::NodeHandle& private_nh);
 
 struct FrameNames {

@@ -1,0 +1,128 @@
+#include "adaptive_lego_loam/ros/motion_prior_conversions.h"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <algorithm>
+
+#include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/ros/pose_conversions.h"
+
+namespace adaptive_lego_loam::ros_bridge {
+namespace {
+
+constexpr double kGravityArrowLength = 2.0;  // m
+
+template <int N, std::size_t Size>
+void set_matrix(boost::array<double, Size>& out, const Eigen::Matrix<double, N, N>& m) {
+  static_assert(Size == N * N);
+  for (int r = 0; r < N; ++r) {
+    for (int c = 0; c < N; ++c)
+      out[r * N + c] = m(r, c);
+  }
+}
+
+template <int N, std::size_t Size>
+Eigen::Matrix<double, N, N> matrix_of(const boost::array<double, Size>& in,
+                                      const std::string& source, const char* field) {
+  static_assert(Size == N * N);
+  Eigen::Matrix<double, N, N> m;
+  for (int r = 0; r < N; ++r) {
+    for (int c = 0; c < N; ++c)
+      m(r, c) = in[r * N + c];
+  }
+  if (!m.allFinite()) throw IoError(source + ": " + field + " holds a non-finite number");
+  return m;
+}
+
+}  // namespace
+
+MotionPriors motion_priors_to_ros(const MotionPrediction* prediction,
+                                  const std_msgs::Header& header) {
+  MotionPriors msg;
+  msg.header = header;
+  msg.motion.orientation.w = 1.0;
+  msg.up.z = 1.0;
+  if (prediction && prediction->motion) {
+    msg.has_motion = true;
+    msg.motion = tf2::toMsg(prediction->motion->motion);
+    set_matrix(msg.motion_information, prediction->motion->information);
+  }
+  if (prediction && prediction->gravity) {
+    msg.has_gravity = true;
+    tf2::toMsg(prediction->gravity->up, msg.up);
+    set_matrix(msg.up_covariance, prediction->gravity->covariance);
+  }
+  return msg;
+}
+
+MotionPrediction motion_priors_from_ros(const MotionPriors& msg, const std::string& source) {
+  MotionPrediction prediction;
+  if (msg.has_motion) {
+    MotionPrior prior;
+    prior.motion = pose_from_ros(msg.motion, source);
+    prior.information = matrix_of<6>(msg.motion_information, source, "motion_information");
+    prediction.motion = prior;
+  }
+  if (msg.has_gravity) {
+    GravityPrior gravity;
+    gravity.up = Eigen::Vector3d(msg.up.x, msg.up.y, msg.up.z);
+    if (!gravity.up.allFinite() || gravity.up.norm() < 0.5) {
+      throw IoError(source + ": up is not a unit vector");
+    }
+    gravity.covariance = matrix_of<3>(msg.up_covariance, source, "up_covariance");
+    prediction.gravity = gravity;
+  }
+  return prediction;
+}
+
+MapMatch map_match_to_ros(const MapMatchResult& match,
+                          const std::optional<Eigen::Isometry3d>& motion,
+                          const std_msgs::Header& header) {
+  MapMatch msg;
+  msg.header = header;
+  msg.matched = match.matched;
+  msg.motion.orientation.w = 1.0;
+  if (motion) {
+    msg.has_motion = true;
+    msg.motion = tf2::toMsg(*motion);
+  }
+  set_matrix(msg.information, match.information);
+  msg.degenerate_directions = match.degenerate_directions;
+  return msg;
+}
+
+MappingFeedback mapping_feedback_from_ros(const MapMatch& msg, const std::string& source) {
+  MappingFeedback feedback;
+  feedback.information = matrix_of<6>(msg.information, source, "information");
+  if (msg.matched && msg.has_motion) feedback.motion = pose_from_ros(msg.motion, source);
+  return feedback;
+}
+
+visualization_msgs::Marker gravity_marker(const MotionPriors& msg) {
+  visualization_msgs::Marker arrow;
+  arrow.header = msg.header;
+  arrow.ns = "gravity";
+  arrow.id = 0;
+  arrow.type = visualization_msgs::Marker::ARROW;
+  if (!msg.has_gravity) {
+    arrow.action = visualization_msgs::Marker::DELETE;
+    return arrow;
+  }
+  arrow.action = visualization_msgs::Marker::ADD;
+  arrow.pose.orientation.w = 1.0;
+  geometry_msgs::Point tail, head;
+  head.x = kGravityArrowLength * msg.up.x;
+  head.y = kGravityArrowLength * msg.up.y;
+  head.z = kGravityArrowLength * msg.up.z;
+  arrow.points = {tail, head};
+  arrow.scale.x = 0.15;  // shaft diameter
+  arrow.scale.y = 0.35;  // head diameter
+  arrow.scale.z = 0.5;   // head length
+  arrow.color.r = 0.2f;
+  arrow.color.g = 0.6f;
+  arrow.color.b = 1.0f;
+  arrow.color.a = 1.0f;
+  return arrow;
+}
+
+}  // namespace adaptive_lego_loam::ros_bridge
