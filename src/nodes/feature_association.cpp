@@ -1,13 +1,43 @@
 #include "feature_association.h"
 #include "node_entry_points.h"
 
+#include <tf2_eigen/tf2_eigen.h>
+#include <visualization_msgs/Marker.h>
+
 #include "adaptive_lego_loam/ros/feature_conversions.h"
+#include "adaptive_lego_loam/ros/motion_prior_conversions.h"
+#include "adaptive_lego_loam/ros/motion_sensor_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
 #include "adaptive_lego_loam/ros/shared_publish.h"
 
 namespace adaptive_lego_loam::nodes {
+namespace {
+
+// The pose of `child` in `parent` from TF (a static transform), waiting up to `wait_s` of wall
+// time for it: ROS time may stand still under use_sim_time.
+std::optional<Eigen::Isometry3d> lookup_pose(const tf2_ros::Buffer& buffer,
+                                             const std::string& parent, const std::string& child,
+                                             double wait_s) {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_s);
+  std::string error;
+  while (!buffer.canTransform(parent, child, ros::Time(0), &error)) {
+    if (ros::WallTime::now() >= deadline || !ros::ok()) return std::nullopt;
+    ros::WallDuration(0.01).sleep();
+  }
+  return tf2::transformToEigen(buffer.lookupTransform(parent, child, ros::Time(0)));
+}
+
+std::string describe_extrinsic(const std::vector<double>& rpy_deg, const std::vector<double>& xyz) {
+  char text[160];
+  std::snprintf(text, sizeof(text), "rpy %.4f %.4f %.4f deg, xyz %.4f %.4f %.4f m", rpy_deg[0],
+                rpy_deg[1], rpy_deg[2], xyz[0], xyz[1], xyz[2]);
+  return text;
+}
+
+}  // namespace
 
 using ros_bridge::publish_shared;
+using ros_bridge::ScanRelease;
 
 FeatureAssociationNode::FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh,
                                                const Config& config)
@@ -18,6 +48,8 @@ FeatureAssociationNode::FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHan
                private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
       warn_("feature_association", private_nh.param("warning_period", 5.0)),
       summary_("feature_association", private_nh.param("summary_period", 10.0)),
+      max_pending_(private_nh.param("max_pending_scans", 10)),
+      tf_wait_s_(private_nh.param("tf_wait", 1.0)),
       diagnostics_(nh, private_nh, "feature_association", config.sensor.name,
                    config.sensor.scan_period,
                    [this](ros_bridge::HealthStatus& status) { add_diagnostics(status); }) {
@@ -35,6 +67,33 @@ FeatureAssociationNode::FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHan
     mapped_sub_ =
         nh.subscribe("aft_mapped_to_init", queue, &FeatureAssociationNode::on_mapped, this);
   }
+  // The motion sensors: off (nothing of them subscribed or published) unless a topic is given.
+  ros_bridge::MotionSensorInputs inputs;
+  const std::string imu_topic = private_nh.param<std::string>("imu_topic", "");
+  const std::string wheel_topic = private_nh.param<std::string>("wheel_odom_topic", "");
+  inputs.imu = !imu_topic.empty();
+  inputs.wheel = !wheel_topic.empty();
+  if (!inputs.any()) return;
+  const double timeout = private_nh.param("motion_sensor_timeout", 2.0 * config.sensor.scan_period);
+  relay_.emplace(config, inputs, timeout);
+  sensor_diagnostics_.emplace(inputs.imu ? nh.resolveName(imu_topic) : "",
+                              inputs.wheel ? nh.resolveName(wheel_topic) : "");
+  tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
+  tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_);
+  // A large queue: samples come at up to 1 kHz and each one counts.
+  if (inputs.imu) imu_sub_ = nh.subscribe(imu_topic, 2000, &FeatureAssociationNode::on_imu, this);
+  if (inputs.wheel) {
+    wheel_sub_ = nh.subscribe(wheel_topic, 500, &FeatureAssociationNode::on_wheel_odometry, this);
+  }
+  map_match_sub_ = nh.subscribe("map_match", queue, &FeatureAssociationNode::on_map_match, this);
+  priors_pub_ = nh.advertise<MotionPriors>("motion_priors", queue);
+  gravity_pub_ = nh.advertise<visualization_msgs::Marker>("gravity_marker", 1);
+  release_timer_ =
+      nh.createSteadyTimer(ros::WallDuration(timeout / 4.0),
+                           [this](const ros::SteadyTimerEvent&) { release_pending(); });
+  const std::string what = (inputs.imu ? " IMU on " + imu_topic : "") +
+                           (inputs.wheel ? " wheel odometry on " + wheel_topic : "");
+  ROS_INFO("feature_association: motion sensors:%s", what.c_str());
 }
 
 // As the offline pipeline: the last motion as mapping refined it (aft_mapped_to_init's twist)
@@ -57,20 +116,133 @@ void FeatureAssociationNode::on_mapped(const nav_msgs::OdometryConstPtr& msg) {
   }
 }
 
+void FeatureAssociationNode::on_imu(const sensor_msgs::ImuConstPtr& msg) {
+  if (imu_frame_.empty()) imu_frame_ = msg->header.frame_id;
+  relay_->add_imu(ros_bridge::imu_from_ros(*msg), ros_bridge::steady_seconds());
+  release_pending();
+}
+
+void FeatureAssociationNode::on_wheel_odometry(const nav_msgs::OdometryConstPtr& msg) {
+  // The twist is in the child frame; without one, in ~base_frame.
+  if (wheel_frame_.empty()) {
+    wheel_frame_ = msg->child_frame_id.empty() ? frames_.base : msg->child_frame_id;
+  }
+  relay_->add_wheel(ros_bridge::wheel_odometry_from_ros(*msg), ros_bridge::steady_seconds());
+  release_pending();
+}
+
+// What mapping saw of a scan teaches the motion sensors, before the next scan is predicted.
+void FeatureAssociationNode::on_map_match(const MapMatchConstPtr& msg) {
+  try {
+    const ros_bridge::MappingFeedback feedback =
+        ros_bridge::mapping_feedback_from_ros(*msg, map_match_sub_.getTopic());
+    relay_->add_feedback(msg->header.stamp.toSec(), feedback.motion, feedback.information);
+  } catch (const std::exception& e) {
+    warn_(std::string("map match ignored: ") + e.what());
+  }
+  release_pending();
+}
+
 void FeatureAssociationNode::add(Slot slot, const std_msgs::Header& header,
                                  ros_bridge::StampMatcher::Message msg) {
-  const auto group = pairing_.add(slot, header.stamp, std::move(msg));
+  auto group = pairing_.add(slot, header.stamp, std::move(msg));
   for (; pairing_dropped_ < pairing_.dropped(); ++pairing_dropped_)
     diagnostics_.dropped("incomplete group");
-  if (group) process(*group);
+  if (!group) return;
+  if (!relay_) {
+    process(*group);
+    return;
+  }
+  pending_.push_back({std::move(*group), ros_bridge::steady_seconds()});
+  release_pending();
+}
+
+void FeatureAssociationNode::release_pending() {
+  while (!pending_.empty()) {
+    const PendingScan& scan = pending_.front();
+    ScanRelease release =
+        relay_->release(scan.group.stamp.toSec(), scan.since_s, ros_bridge::steady_seconds());
+    if (release == ScanRelease::kWait) {
+      if (pending_.size() <= max_pending_) return;
+      release = ScanRelease::kTimeout;  // too many held: the oldest goes on
+    }
+    const ros_bridge::StampMatcher::Group group = std::move(pending_.front().group);
+    pending_.pop_front();
+    process(group, release);
+  }
 }
 
 void FeatureAssociationNode::reset() {
   odometry_ = LidarOdometry(config_.sensor, config_.features, config_.odometry);
   last_mapped_stamp_.reset();
+  if (relay_) relay_->reset();
 }
 
-void FeatureAssociationNode::process(const ros_bridge::StampMatcher::Group& group) {
+void FeatureAssociationNode::resolve_extrinsics(const std::string& sensor_frame) {
+  const auto resolve = [&](const std::string& input, const std::string& frame, bool& resolved,
+                           auto set_pose, std::vector<double>& rpy, std::vector<double>& xyz,
+                           auto set_source) {
+    if (resolved || frame.empty()) return;
+    resolved = true;
+    std::string source = "config";
+    if (const auto pose = lookup_pose(*tf_buffer_, sensor_frame, frame, tf_wait_s_)) {
+      set_pose(*pose);
+      ros_bridge::set_extrinsic(*pose, rpy, xyz);
+      source = "TF " + sensor_frame + " -> " + frame;
+      ROS_INFO("feature_association: %s extrinsic from %s: %s", input.c_str(), source.c_str(),
+               describe_extrinsic(rpy, xyz).c_str());
+    } else {
+      ROS_INFO(
+          "feature_association: %s extrinsic from the config (no transform %s -> %s in TF "
+          "within %.1f s): %s",
+          input.c_str(), sensor_frame.c_str(), frame.c_str(), tf_wait_s_,
+          describe_extrinsic(rpy, xyz).c_str());
+    }
+    set_source(source);
+  };
+  ImuParams& imu = config_.imu;
+  WheelOdometryParams& wheel = config_.wheel_odometry;
+  if (relay_->inputs().imu) {
+    resolve(
+        "IMU", imu_frame_, imu_extrinsic_resolved_,
+        [&](const Eigen::Isometry3d& pose) { relay_->set_lidar_from_imu(pose); },
+        imu.extrinsic_rpy_deg, imu.extrinsic_xyz_m,
+        [&](const std::string& source) { sensor_diagnostics_->set_imu_extrinsic_source(source); });
+  }
+  if (relay_->inputs().wheel) {
+    resolve(
+        "wheel odometry", wheel_frame_, wheel_extrinsic_resolved_,
+        [&](const Eigen::Isometry3d& pose) { relay_->set_lidar_from_base(pose); },
+        wheel.extrinsic_rpy_deg, wheel.extrinsic_xyz_m,
+        [&](const std::string& source) {
+          sensor_diagnostics_->set_wheel_extrinsic_source(source);
+        });
+  }
+}
+
+const MotionPrediction* FeatureAssociationNode::predict(const std_msgs::Header& header,
+                                                        ScanRelease release, StageTimes& times) {
+  resolve_extrinsics(header.frame_id);
+  const std::string missing = relay_->missing(header.stamp.toSec());
+  Stopwatch watch;
+  const MotionPrediction* prediction = relay_->predict(
+      header.stamp.toSec(), config_.sensor.scan_period, release, ros_bridge::steady_seconds());
+  times.add("motion_sensors", watch.lap_ms());
+  for (const ros_bridge::SampleFaultReport& fault : relay_->take_faults()) {
+    if (fault.first) {
+      ROS_WARN("feature_association: %s (further ones are counted on /diagnostics)",
+               fault.describe().c_str());
+    }
+  }
+  if (release == ScanRelease::kTimeout) {
+    warn_("scan at " + std::to_string(header.stamp.toSec()) + " s processed without " + missing +
+          " (~motion_sensor_timeout)");
+  }
+  return prediction;
+}
+
+void FeatureAssociationNode::process(const ros_bridge::StampMatcher::Group& group,
+                                     ScanRelease release) {
   const StampStep step = diagnostics_.received(group.stamp);
   if (step == StampStep::kDuplicate) {
     drop("duplicate stamp", "a scan with the stamp of the last one");
@@ -84,28 +256,32 @@ void FeatureAssociationNode::process(const ros_bridge::StampMatcher::Group& grou
     reset();
   }
   const auto cloud = group.get<sensor_msgs::PointCloud2>(kCloud);
+  std_msgs::Header header = cloud->header;
+  if (header.frame_id.empty()) header.frame_id = frames_.sensor;
+  const MotionPrediction* prediction = nullptr;
+  StageTimes times;
   try {
     ros_bridge::segmented_cloud_from_ros(*cloud, *group.get<CloudInfoMsg>(kInfo),
                                          *group.get<sensor_msgs::PointCloud2>(kOutliers), topics(),
                                          received_);
-    odometry_.process(received_.cloud, received_.has_time, out_);
+    if (relay_) prediction = predict(header, release, times);
+    odometry_.process(received_.cloud, received_.has_time, out_, prediction);
   } catch (const std::exception& e) {
     drop("bad cloud", e.what());
     return;
   }
+  times.append(out_.times);
   if (out_.odometry.rejected) {
     ++rejected_motions_;
     warn_(
         "implausible scan-to-scan motion (odometry.max_speed, max_turn_rate_deg): the "
         "predicted motion kept");
   }
-  std_msgs::Header header = cloud->header;
-  if (header.frame_id.empty()) header.frame_id = frames_.sensor;
-  publish(header);
+  publish(header, prediction);
   ROS_DEBUG("feature_association: scan at %.3f: %s", header.stamp.toSec(),
-            ros_bridge::format_stage_times(out_.times).c_str());
-  diagnostics_.processed(out_.times);
-  summary_.add(out_.times);
+            ros_bridge::format_stage_times(times).c_str());
+  diagnostics_.processed(times);
+  summary_.add(times);
   if (const auto line = summary_.report()) ROS_INFO("%s", line->c_str());
 }
 
@@ -116,6 +292,7 @@ void FeatureAssociationNode::add_diagnostics(ros_bridge::HealthStatus& status) {
     status.raise(ros_bridge::HealthLevel::kWarn, "implausible odometry motions rejected");
   }
   rejected_motions_reported_ = rejected;
+  if (relay_) sensor_diagnostics_->add_to(*relay_, status);
 }
 
 void FeatureAssociationNode::drop(const std::string& reason, const std::string& detail) {
@@ -128,7 +305,8 @@ ros_bridge::SegmentedCloudTopics FeatureAssociationNode::topics() const {
 }
 
 // Features in the sensor frame at the end of the sweep; the pose in the odometry frame.
-void FeatureAssociationNode::publish(const std_msgs::Header& header) {
+void FeatureAssociationNode::publish(const std_msgs::Header& header,
+                                     const MotionPrediction* prediction) {
   const FeatureSet& features = out_.features;
   publish_shared(corner_pub_, ros_bridge::cloud_to_ros(*features.less_sharp, header));
   publish_shared(surface_pub_, ros_bridge::cloud_to_ros(*features.less_flat, header));
@@ -143,6 +321,13 @@ void FeatureAssociationNode::publish(const std_msgs::Header& header) {
   odometry_header.frame_id = frames_.odom;
   publish_shared(odometry_pub_,
                  ros_bridge::odometry_to_ros(out_.pose, odometry_header, header.frame_id));
+  if (!relay_) return;
+  // Every scan's, so that map_optimization pairs it; both flags false when LiDAR-only.
+  MotionPriors priors = ros_bridge::motion_priors_to_ros(prediction, header);
+  if (gravity_pub_.getNumSubscribers() > 0) {
+    publish_shared(gravity_pub_, ros_bridge::gravity_marker(priors));
+  }
+  publish_shared(priors_pub_, std::move(priors));
 }
 
 int run_feature_association(int argc, char** argv) {

@@ -11,16 +11,18 @@
 #include "adaptive_lego_loam/io/process_memory.h"
 #include "adaptive_lego_loam/ros/degeneration_conversions.h"
 #include "adaptive_lego_loam/ros/feature_conversions.h"
+#include "adaptive_lego_loam/ros/motion_prior_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
 #include "adaptive_lego_loam/ros/shared_publish.h"
 
 namespace adaptive_lego_loam::nodes {
 namespace {
 
-std::vector<std::string> slot_names(bool with_degeneration) {
+std::vector<std::string> slot_names(bool with_degeneration, bool with_motion_priors) {
   std::vector<std::string> names = {"laser_cloud_corner_last", "laser_cloud_surf_last",
                                     "outlier_cloud_last", "laser_odom_to_init"};
   if (with_degeneration) names.push_back("degeneration");
+  if (with_motion_priors) names.push_back("motion_priors");
   return names;
 }
 
@@ -49,8 +51,11 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
       initial_pose_(initial_pose_param(private_nh)),
       save_on_exit_(private_nh.param<std::string>("save_map_on_exit", "")),
       uses_prior_(config.mapping.weak_direction_prior > 0.0),
+      uses_motion_sensors_(private_nh.param("motion_sensors", false)),
+      degeneration_slot_(kOdometry + 1),
+      priors_slot_(kOdometry + 1 + uses_prior_),
       frames_(ros_bridge::load_frame_names(private_nh)),
-      pairing_("map_optimization", slot_names(uses_prior_),
+      pairing_("map_optimization", slot_names(uses_prior_, uses_motion_sensors_),
                private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
       surround_throttle_(private_nh.param("surround_period", 1.0)),
       path_throttle_(private_nh.param("path_period", 1.0)),
@@ -75,6 +80,7 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
   surround_pub_ = nh.advertise<sensor_msgs::PointCloud2>("laser_cloud_surround", 1);
   keyframe_pub_ = nh.advertise<sensor_msgs::PointCloud2>("key_pose_origin", 1);
   path_pub_ = nh.advertise<nav_msgs::Path>("path", 1);
+  map_match_pub_ = nh.advertise<MapMatch>("map_match", queue);
   subscriptions_.push_back(
       nh.subscribe("laser_cloud_corner_last", queue, &MapOptimizationNode::on_corners, this));
   subscriptions_.push_back(
@@ -88,6 +94,10 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
     // features of the same scan arrive.
     subscriptions_.push_back(
         nh.subscribe("degeneration", 4 * queue, &MapOptimizationNode::on_degeneration, this));
+  }
+  if (uses_motion_sensors_) {
+    subscriptions_.push_back(
+        nh.subscribe("motion_priors", queue, &MapOptimizationNode::on_motion_priors, this));
   }
   if (mapping_->localizing()) {
     initial_pose_sub_ = nh.subscribe("initialpose", 1, &MapOptimizationNode::on_initial_pose, this);
@@ -176,7 +186,7 @@ bool MapOptimizationNode::on_save_map(SaveMap::Request& request, SaveMap::Respon
   return true;  // the outcome is in the response
 }
 
-void MapOptimizationNode::add(Slot slot, const std_msgs::Header& header,
+void MapOptimizationNode::add(std::size_t slot, const std_msgs::Header& header,
                               ros_bridge::StampMatcher::Message msg) {
   const auto group = pairing_.add(slot, header.stamp, std::move(msg));
   for (; pairing_dropped_ < pairing_.dropped(); ++pairing_dropped_)
@@ -229,12 +239,20 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
       ros_bridge::pose_from_ros(odometry->pose.pose, topic(kOdometry));
   std::optional<WeakDirectionPrior> prior;
   if (uses_prior_) {
-    prior = ros_bridge::weak_direction_prior_from_ros(config_.mapping,
-                                                      *group.get<DegenerationState>(kDegeneration));
+    prior = ros_bridge::weak_direction_prior_from_ros(
+        config_.mapping, *group.get<DegenerationState>(degeneration_slot_));
+  }
+  // The motion sensors' priors of the scan, as the offline pipeline passes them (none: nullptr).
+  std::optional<MotionPrediction> sensors;
+  if (uses_motion_sensors_) {
+    sensors = ros_bridge::motion_priors_from_ros(*group.get<MotionPriors>(priors_slot_),
+                                                 topic(priors_slot_));
+    if (sensors->empty()) sensors.reset();
   }
   {
     std::lock_guard<std::mutex> lock(mapping_mutex_);
-    mapping_->process(features, odometry_pose, group.stamp.toSec(), prior, out_);
+    mapping_->process(features, odometry_pose, group.stamp.toSec(), prior, out_,
+                      sensors ? &*sensors : nullptr);
     sensor_frame_ = odometry->child_frame_id.empty() ? frames_.sensor : odometry->child_frame_id;
     ++mapped_scans_;
     if (mapping_->localizing() &&
@@ -308,6 +326,11 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
   } else {
     ros_bridge::mark_no_mapped_motion(mapped);
   }
+  // What the motion sensors learn from (before the pose: whoever waits for the pose has it).
+  std_msgs::Header sensor_header = map_header;
+  sensor_header.frame_id = sensor_frame_;
+  publish_shared(map_match_pub_,
+                 ros_bridge::map_match_to_ros(out_.match, out_.motion, sensor_header));
   publish_shared(mapped_pub_, std::move(mapped));
   tf_broadcaster_.sendTransform(
       ros_bridge::transform_to_ros(mapping_->fusion().correction(), map_header, frames_.odom));

@@ -5,6 +5,7 @@
 // the keyframe positions, the path and the local map; serves save_map.
 
 #include <adaptive_lego_loam/DegenerationState.h>
+#include <adaptive_lego_loam/MotionPriors.h>
 #include <adaptive_lego_loam/SaveMap.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -36,7 +37,9 @@ class MapOptimizationNode {
   ~MapOptimizationNode();
 
  private:
-  enum Slot : std::size_t { kCorners, kSurfaces, kOutliers, kOdometry, kDegeneration };
+  // The optional slots follow the fixed ones: /degeneration (with the weak-direction prior), then
+  // /motion_priors (with motion sensors), at degeneration_slot_ and priors_slot_.
+  enum Slot : std::size_t { kCorners, kSurfaces, kOutliers, kOdometry };
 
   void on_corners(const sensor_msgs::PointCloud2ConstPtr& msg) { add(kCorners, msg->header, msg); }
   void on_surfaces(const sensor_msgs::PointCloud2ConstPtr& msg) {
@@ -47,15 +50,16 @@ class MapOptimizationNode {
   }
   void on_odometry(const nav_msgs::OdometryConstPtr& msg) { add(kOdometry, msg->header, msg); }
   void on_degeneration(const DegenerationStateConstPtr& msg) {
-    add(kDegeneration, msg->header, msg);
+    add(degeneration_slot_, msg->header, msg);
   }
+  void on_motion_priors(const MotionPriorsConstPtr& msg) { add(priors_slot_, msg->header, msg); }
   void on_initial_pose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool on_save_map(SaveMap::Request& request, SaveMap::Response& response);
 
-  void add(Slot slot, const std_msgs::Header& header, ros_bridge::StampMatcher::Message msg);
+  void add(std::size_t slot, const std_msgs::Header& header, ros_bridge::StampMatcher::Message msg);
   void process(const ros_bridge::StampMatcher::Group& group);
   void map_scan(const ros_bridge::StampMatcher::Group& group);
-  std::string topic(Slot slot) const { return subscriptions_[slot].getTopic(); }
+  std::string topic(std::size_t slot) const { return subscriptions_[slot].getTopic(); }
   void log_loop(const LoopDetection& loop) const;
   void log_localization(const LocalizationStatus& status);
   void publish(const ros::Time& stamp);
@@ -80,6 +84,8 @@ class MapOptimizationNode {
   std::unique_ptr<LidarMapping> mapping_;
   MappingOutput out_;
   bool uses_prior_;
+  bool uses_motion_sensors_;  // ~motion_sensors: feature_association sends /motion_priors
+  std::size_t degeneration_slot_, priors_slot_;
   ros_bridge::FrameNames frames_;
   std::string sensor_frame_;
   long mapped_scans_ = 0;
@@ -98,7 +104,7 @@ class MapOptimizationNode {
   ros_bridge::StageSummary summary_;
   std::vector<ros::Subscriber> subscriptions_;  // in Slot order
   ros::Subscriber initial_pose_sub_;
-  ros::Publisher mapped_pub_, surround_pub_, keyframe_pub_, path_pub_;
+  ros::Publisher mapped_pub_, surround_pub_, keyframe_pub_, path_pub_, map_match_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   ros_bridge::NodeDiagnostics diagnostics_;
   HeapTrimmer heap_trimmer_;  // in a nodelet manager, for every stage in it
