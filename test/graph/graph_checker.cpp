@@ -39,8 +39,10 @@
 #include "adaptive_lego_loam/ros/cloud_conversions.h"
 #include "adaptive_lego_loam/ros/kitti_bag.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
+#include "graph/graph_player.h"
 
 using namespace adaptive_lego_loam;
+using namespace adaptive_lego_loam::graph_test;
 namespace fs = std::filesystem;
 
 namespace {
@@ -48,21 +50,6 @@ namespace {
 constexpr int kMalformedAfterScan = 2;  // the bad clouds go between scans 2 and 3
 constexpr double kReplayShift = 10.0;   // s: the replayed scans are this much older
 constexpr int kEmptyFrameScan = 1;      // sent with an empty frame_id
-
-// What the checker saw on the graph's outputs.
-struct Recording {
-  std::map<ros::Time, Eigen::Isometry3d> mapped, integrated;
-  std::map<ros::Time, std::string> mapped_child_frame;
-  std::map<ros::Time, DegenerationState> degeneration;
-  std::vector<std::string> image_projection_warnings;
-  std::vector<std::string> time_jump_warnings;  // "time went back", from any stage
-  std::vector<std::string> warnings;            // every warning, from any stage
-  std::vector<std::string> infos;               // every info line, from any stage
-  // The newest status of each name on /diagnostics ("image_projection: scans", ...).
-  std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;
-  std::optional<Eigen::Isometry3d> tf_map_to_sensor;  // at the last scan's stamp
-  bool every_scan_mapped = true;
-};
 
 struct Bag {
   std::vector<sensor_msgs::PointCloud2> clouds;
@@ -95,39 +82,6 @@ std::string graph_config_path() {
   return path.empty() ? std::string(CONFIG_DIR) + "/kitti.yaml" : path;
 }
 
-// Polls callbacks until `done` or `seconds` of wall time pass.
-bool wait_for(const std::function<bool()>& done, double seconds) {
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(seconds);
-  while (ros::ok() && ros::WallTime::now() < deadline) {
-    ros::spinOnce();
-    if (done()) return true;
-    ros::WallDuration(0.005).sleep();
-  }
-  return done();
-}
-
-// The nodes the master lists as publishers (kind 0) or subscribers (kind 1) of `topic`.
-std::vector<std::string> registered_nodes(int kind, const std::string& topic) {
-  XmlRpc::XmlRpcValue request, response, payload;
-  request[0] = ros::this_node::getName();
-  std::vector<std::string> nodes;
-  if (!ros::master::execute("getSystemState", request, response, payload, false)) return nodes;
-  for (int i = 0; i < payload[kind].size(); ++i) {
-    if (std::string(payload[kind][i][0]) != topic) continue;
-    for (int j = 0; j < payload[kind][i][1].size(); ++j)
-      nodes.push_back(payload[kind][i][1][j]);
-  }
-  return nodes;
-}
-
-// Whether every topic has a publisher and a subscriber registered with the master.
-bool graph_connected(const std::vector<std::string>& topics) {
-  for (const std::string& topic : topics) {
-    if (registered_nodes(0, topic).empty() || registered_nodes(1, topic).empty()) return false;
-  }
-  return true;
-}
-
 sensor_msgs::PointCloud2 cloud_without_z(const std_msgs::Header& header) {
   sensor_msgs::PointCloud2 msg;
   sensor_msgs::PointCloud2Modifier modifier(msg);
@@ -144,156 +98,6 @@ sensor_msgs::PointCloud2 nan_cloud(const std_msgs::Header& header) {
   for (ScanPoint& p : points)
     p.x = p.y = p.z = std::nanf("");
   return ros_bridge::to_ros(points, header, true);
-}
-
-Eigen::Isometry3d pose_of(const nav_msgs::Odometry& msg) {
-  return ros_bridge::pose_from_ros(msg.pose.pose, "test");
-}
-
-// A /diagnostics status's key-value pairs.
-std::map<std::string, std::string> values_of(const diagnostic_msgs::DiagnosticStatus& status) {
-  std::map<std::string, std::string> values;
-  for (const auto& entry : status.values)
-    values[entry.key] = entry.value;
-  return values;
-}
-
-class Player {
- public:
-  explicit Player(Recording& recording) : recording_(recording), tf_listener_(tf_buffer_) {
-    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-    initial_pose_pub_ = nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("/initialpose", 1);
-    cloud_pub_ = nh_.advertise<sensor_msgs::PointCloud2>("/velodyne_points", 10);
-    subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
-        "/aft_mapped_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
-          recording_.mapped[m->header.stamp] = pose_of(*m);
-          recording_.mapped_child_frame[m->header.stamp] = m->child_frame_id;
-        }));
-    subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
-        "/integrated_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
-          recording_.integrated[m->header.stamp] = pose_of(*m);
-        }));
-    subs_.push_back(nh_.subscribe<DegenerationState>(
-        "/degeneration", 10, [this](const DegenerationStateConstPtr& m) {
-          recording_.degeneration[m->header.stamp] = *m;
-        }));
-    // Matched by the message's prefix: a nodelet logs under its manager's node name.
-    subs_.push_back(nh_.subscribe<rosgraph_msgs::Log>(
-        "/rosout", 100, [this](const rosgraph_msgs::LogConstPtr& m) {
-          if (m->level == rosgraph_msgs::Log::INFO) recording_.infos.push_back(m->msg);
-          if (m->level != rosgraph_msgs::Log::WARN) return;
-          recording_.warnings.push_back(m->msg);
-          if (m->msg.rfind("image_projection:", 0) == 0) {
-            recording_.image_projection_warnings.push_back(m->msg);
-          }
-          if (m->msg.find("time went back") != std::string::npos) {
-            recording_.time_jump_warnings.push_back(m->msg);
-          }
-        }));
-    subs_.push_back(nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
-        "/diagnostics", 100, [this](const diagnostic_msgs::DiagnosticArrayConstPtr& m) {
-          for (const auto& status : m->status)
-            recording_.diagnostics[status.name] = status;
-        }));
-  }
-
-  // Waits until the status `name` on /diagnostics has `key` = `value`.
-  bool wait_for_diagnostic(const std::string& name, const std::string& key,
-                           const std::string& value) {
-    return wait_for(
-        [&] {
-          const auto it = recording_.diagnostics.find(name);
-          if (it == recording_.diagnostics.end()) return false;
-          const auto values = values_of(it->second);
-          const auto entry = values.find(key);
-          return entry != values.end() && entry->second == value;
-        },
-        10.0);
-  }
-
-  bool wait_for_graph() {
-    const std::vector<std::string> topics = {"/velodyne_points",
-                                             "/segmented_cloud",
-                                             "/segmented_cloud_info",
-                                             "/outlier_cloud",
-                                             "/laser_cloud_corner_last",
-                                             "/laser_cloud_surf_last",
-                                             "/outlier_cloud_last",
-                                             "/laser_odom_to_init",
-                                             "/aft_mapped_to_init",
-                                             "/integrated_to_init",
-                                             "/degeneration"};
-    if (!wait_for([&] { return graph_connected(topics); }, 60.0)) return false;
-    // Registered is not yet connected: wait for this checker's own links, then give the stages'
-    // links among themselves as long again (rosbag play -d does the same by time alone).
-    const ros::WallTime registered = ros::WallTime::now();
-    if (!wait_for([&] { return cloud_pub_.getNumSubscribers() > 0; }, 30.0)) return false;
-    ros::WallDuration(std::max(1.0, (ros::WallTime::now() - registered).toSec())).sleep();
-    return true;
-  }
-
-  void send(const sensor_msgs::PointCloud2& cloud) {
-    rosgraph_msgs::Clock clock;
-    clock.clock = cloud.header.stamp;
-    clock_pub_.publish(clock);
-    cloud_pub_.publish(cloud);
-  }
-
-  // Sends a scan and waits until it is mapped and fused.
-  bool play(const sensor_msgs::PointCloud2& cloud) {
-    send(cloud);
-    const ros::Time stamp = cloud.header.stamp;
-    return wait_for(
-        [&] { return recording_.mapped.count(stamp) && recording_.integrated.count(stamp); }, 30.0);
-  }
-
-  bool wait_for_warning(const std::string& text) {
-    return wait_for_line(recording_.warnings, text);
-  }
-  bool wait_for_info(const std::string& text) { return wait_for_line(recording_.infos, text); }
-
-  // Waits until a line of `lines` holds `text`.
-  bool wait_for_line(const std::vector<std::string>& lines, const std::string& text) {
-    return wait_for(
-        [&] {
-          for (const std::string& line : lines) {
-            if (line.find(text) != std::string::npos) return true;
-          }
-          return false;
-        },
-        10.0);
-  }
-
-  // As rviz's "2D Pose Estimate" sends it, in `frame`.
-  bool send_initial_pose(const Eigen::Isometry3d& pose, const std::string& frame) {
-    if (!wait_for([&] { return initial_pose_pub_.getNumSubscribers() > 0; }, 10.0)) return false;
-    geometry_msgs::PoseWithCovarianceStamped msg;
-    msg.header.frame_id = frame;
-    msg.header.stamp = ros::Time::now();
-    msg.pose.pose = tf2::toMsg(pose);
-    initial_pose_pub_.publish(msg);
-    return true;
-  }
-
-  std::optional<Eigen::Isometry3d> lookup(const std::string& target, const std::string& source,
-                                          const ros::Time& stamp) {
-    if (!wait_for([&] { return tf_buffer_.canTransform(target, source, stamp); }, 10.0)) {
-      return std::nullopt;
-    }
-    return tf2::transformToEigen(tf_buffer_.lookupTransform(target, source, stamp));
-  }
-
- private:
-  Recording& recording_;
-  ros::NodeHandle nh_;
-  ros::Publisher clock_pub_, cloud_pub_, initial_pose_pub_;
-  std::vector<ros::Subscriber> subs_;
-  tf2_ros::Buffer tf_buffer_;
-  tf2_ros::TransformListener tf_listener_;
-};
-
-double angle_between(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle();
 }
 
 class Graph : public ::testing::Test {
