@@ -34,6 +34,31 @@ std::string describe_extrinsic(const std::vector<double>& rpy_deg, const std::ve
   return text;
 }
 
+// An input's extrinsic, `frame`'s pose in `sensor_frame`, from static TF; nothing when TF has
+// none within `wait_s` (the config's `rpy_deg`, `xyz_m` hold). Logs which it is.
+std::optional<Eigen::Isometry3d> extrinsic_from_tf(
+    const tf2_ros::Buffer& buffer, const std::string& input, const std::string& sensor_frame,
+    const std::string& frame, const std::vector<double>& rpy_deg, const std::vector<double>& xyz_m,
+    double wait_s) {
+  const std::optional<Eigen::Isometry3d> pose =
+      frame.empty() ? std::nullopt : lookup_pose(buffer, sensor_frame, frame, wait_s);
+  if (!pose) {
+    char wait[32];
+    std::snprintf(wait, sizeof(wait), "%.1f s", wait_s);
+    const std::string why =
+        frame.empty() ? "its messages name no frame"
+                      : "no transform " + sensor_frame + " -> " + frame + " in TF within " + wait;
+    ROS_INFO("feature_association: %s extrinsic from the config (%s): %s", input.c_str(),
+             why.c_str(), describe_extrinsic(rpy_deg, xyz_m).c_str());
+    return std::nullopt;
+  }
+  std::vector<double> rpy, xyz;
+  ros_bridge::set_extrinsic(*pose, rpy, xyz);
+  ROS_INFO("feature_association: %s extrinsic from TF %s -> %s: %s", input.c_str(),
+           sensor_frame.c_str(), frame.c_str(), describe_extrinsic(rpy, xyz).c_str());
+  return pose;
+}
+
 }  // namespace
 
 using ros_bridge::publish_shared;
@@ -48,6 +73,7 @@ FeatureAssociationNode::FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHan
                private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
       warn_("feature_association", private_nh.param("warning_period", 5.0)),
       summary_("feature_association", private_nh.param("summary_period", 10.0)),
+      takes_mapped_motion_(uses_mapped_motion(config.odometry, config.mapping)),
       max_pending_(private_nh.param("max_pending_scans", 10)),
       tf_wait_s_(private_nh.param("tf_wait", 1.0)),
       diagnostics_(nh, private_nh, "feature_association", config.sensor.name,
@@ -63,17 +89,19 @@ FeatureAssociationNode::FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHan
   cloud_sub_ = nh.subscribe("segmented_cloud", queue, &FeatureAssociationNode::on_cloud, this);
   info_sub_ = nh.subscribe("segmented_cloud_info", queue, &FeatureAssociationNode::on_info, this);
   outlier_sub_ = nh.subscribe("outlier_cloud", queue, &FeatureAssociationNode::on_outliers, this);
-  if (uses_mapped_motion(config.odometry, config.mapping)) {
-    mapped_sub_ =
-        nh.subscribe("aft_mapped_to_init", queue, &FeatureAssociationNode::on_mapped, this);
-  }
   // The motion sensors: off (nothing of them subscribed or published) unless a topic is given.
   ros_bridge::MotionSensorInputs inputs;
   const std::string imu_topic = private_nh.param<std::string>("imu_topic", "");
   const std::string wheel_topic = private_nh.param<std::string>("wheel_odom_topic", "");
   inputs.imu = !imu_topic.empty();
   inputs.wheel = !wheel_topic.empty();
-  if (!inputs.any()) return;
+  if (!inputs.any()) {
+    if (takes_mapped_motion_) {
+      mapped_sub_ =
+          nh.subscribe("aft_mapped_to_init", queue, &FeatureAssociationNode::on_mapped, this);
+    }
+    return;
+  }
   const double timeout = private_nh.param("motion_sensor_timeout", 2.0 * config.sensor.scan_period);
   relay_.emplace(config, inputs, timeout);
   sensor_diagnostics_.emplace(inputs.imu ? nh.resolveName(imu_topic) : "",
@@ -117,26 +145,39 @@ void FeatureAssociationNode::on_mapped(const nav_msgs::OdometryConstPtr& msg) {
 }
 
 void FeatureAssociationNode::on_imu(const sensor_msgs::ImuConstPtr& msg) {
-  if (imu_frame_.empty()) imu_frame_ = msg->header.frame_id;
+  if (!imu_frame_) imu_frame_ = msg->header.frame_id;
   relay_->add_imu(ros_bridge::imu_from_ros(*msg), ros_bridge::steady_seconds());
   release_pending();
 }
 
 void FeatureAssociationNode::on_wheel_odometry(const nav_msgs::OdometryConstPtr& msg) {
   // The twist is in the child frame; without one, in ~base_frame.
-  if (wheel_frame_.empty()) {
+  if (!wheel_frame_)
     wheel_frame_ = msg->child_frame_id.empty() ? frames_.base : msg->child_frame_id;
-  }
   relay_->add_wheel(ros_bridge::wheel_odometry_from_ros(*msg), ros_bridge::steady_seconds());
   release_pending();
 }
 
-// What mapping saw of a scan teaches the motion sensors, before the next scan is predicted.
+// What mapping saw of a scan teaches the motion sensors, before the next scan is predicted, and
+// gives the odometry its motion model (as on_mapped without motion sensors, but from the same
+// message: the next scan is released when it came).
 void FeatureAssociationNode::on_map_match(const MapMatchConstPtr& msg) {
+  const std::optional<ros::Time> previous = last_mapped_stamp_;
+  last_mapped_stamp_ = msg->header.stamp;
   try {
     const ros_bridge::MappingFeedback feedback =
         ros_bridge::mapping_feedback_from_ros(*msg, map_match_sub_.getTopic());
-    relay_->add_feedback(msg->header.stamp.toSec(), feedback.motion, feedback.information);
+    relay_->add_feedback(msg->header.stamp.toSec(), feedback.matched_motion(),
+                         feedback.information);
+    if (takes_mapped_motion_ && feedback.motion && previous && msg->header.stamp > *previous) {
+      const double gap = (msg->header.stamp - *previous).toSec();
+      const double period = config_.sensor.scan_period;
+      odometry_.use_mapped_motion(
+          gap <= 1.5 * period
+              ? *feedback.motion
+              : ros_bridge::motion_from_twist(ros_bridge::motion_to_twist(*feedback.motion, gap),
+                                              period, map_match_sub_.getTopic()));
+    }
   } catch (const std::exception& e) {
     warn_(std::string("map match ignored: ") + e.what());
   }
@@ -179,44 +220,26 @@ void FeatureAssociationNode::reset() {
 }
 
 void FeatureAssociationNode::resolve_extrinsics(const std::string& sensor_frame) {
-  const auto resolve = [&](const std::string& input, const std::string& frame, bool& resolved,
-                           auto set_pose, std::vector<double>& rpy, std::vector<double>& xyz,
-                           auto set_source) {
-    if (resolved || frame.empty()) return;
-    resolved = true;
-    std::string source = "config";
-    if (const auto pose = lookup_pose(*tf_buffer_, sensor_frame, frame, tf_wait_s_)) {
-      set_pose(*pose);
-      ros_bridge::set_extrinsic(*pose, rpy, xyz);
-      source = "TF " + sensor_frame + " -> " + frame;
-      ROS_INFO("feature_association: %s extrinsic from %s: %s", input.c_str(), source.c_str(),
-               describe_extrinsic(rpy, xyz).c_str());
-    } else {
-      ROS_INFO(
-          "feature_association: %s extrinsic from the config (no transform %s -> %s in TF "
-          "within %.1f s): %s",
-          input.c_str(), sensor_frame.c_str(), frame.c_str(), tf_wait_s_,
-          describe_extrinsic(rpy, xyz).c_str());
+  if (relay_->inputs().imu && imu_frame_ && !imu_extrinsic_resolved_) {
+    imu_extrinsic_resolved_ = true;
+    const ImuParams& config = config_.imu;
+    if (const auto pose =
+            extrinsic_from_tf(*tf_buffer_, "IMU", sensor_frame, *imu_frame_,
+                              config.extrinsic_rpy_deg, config.extrinsic_xyz_m, tf_wait_s_)) {
+      relay_->set_lidar_from_imu(*pose);
+      sensor_diagnostics_->set_imu_extrinsic_source("TF " + sensor_frame + " -> " + *imu_frame_);
     }
-    set_source(source);
-  };
-  ImuParams& imu = config_.imu;
-  WheelOdometryParams& wheel = config_.wheel_odometry;
-  if (relay_->inputs().imu) {
-    resolve(
-        "IMU", imu_frame_, imu_extrinsic_resolved_,
-        [&](const Eigen::Isometry3d& pose) { relay_->set_lidar_from_imu(pose); },
-        imu.extrinsic_rpy_deg, imu.extrinsic_xyz_m,
-        [&](const std::string& source) { sensor_diagnostics_->set_imu_extrinsic_source(source); });
   }
-  if (relay_->inputs().wheel) {
-    resolve(
-        "wheel odometry", wheel_frame_, wheel_extrinsic_resolved_,
-        [&](const Eigen::Isometry3d& pose) { relay_->set_lidar_from_base(pose); },
-        wheel.extrinsic_rpy_deg, wheel.extrinsic_xyz_m,
-        [&](const std::string& source) {
-          sensor_diagnostics_->set_wheel_extrinsic_source(source);
-        });
+  if (relay_->inputs().wheel && wheel_frame_ && !wheel_extrinsic_resolved_) {
+    wheel_extrinsic_resolved_ = true;
+    const WheelOdometryParams& config = config_.wheel_odometry;
+    if (const auto pose =
+            extrinsic_from_tf(*tf_buffer_, "wheel odometry", sensor_frame, *wheel_frame_,
+                              config.extrinsic_rpy_deg, config.extrinsic_xyz_m, tf_wait_s_)) {
+      relay_->set_lidar_from_base(*pose);
+      sensor_diagnostics_->set_wheel_extrinsic_source("TF " + sensor_frame + " -> " +
+                                                      *wheel_frame_);
+    }
   }
 }
 
@@ -235,8 +258,9 @@ const MotionPrediction* FeatureAssociationNode::predict(const std_msgs::Header& 
     }
   }
   if (release == ScanRelease::kTimeout) {
-    warn_("scan at " + std::to_string(header.stamp.toSec()) + " s processed without " + missing +
-          " (~motion_sensor_timeout)");
+    warn_("scan at " + std::to_string(header.stamp.toSec()) + " s processed without " +
+          (missing.empty() ? "waiting: more scans held than ~max_pending_scans"
+                           : missing + " (~motion_sensor_timeout)"));
   }
   return prediction;
 }

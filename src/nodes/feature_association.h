@@ -84,14 +84,17 @@ class FeatureAssociationNode {
   ros::Subscriber cloud_sub_, info_sub_, outlier_sub_, mapped_sub_;
   ros::Publisher corner_pub_, surface_pub_, outlier_pub_, odometry_pub_, sharp_pub_, flat_pub_;
 
+  // The odometry's motion model is mapping's (uses_mapped_motion): from aft_mapped_to_init, or
+  // with motion sensors from map_match.
+  bool takes_mapped_motion_;
   // The motion sensors, with ~imu_topic or ~wheel_odom_topic only.
   std::optional<ros_bridge::MotionSensorRelay> relay_;
   std::deque<PendingScan> pending_;
   std::size_t max_pending_;
   double tf_wait_s_;
-  // The frames the inputs' messages name (the IMU's frame_id, the odometry's child_frame_id or
-  // ~base_frame), and whether their extrinsics were looked up.
-  std::string imu_frame_, wheel_frame_;
+  // The frames the inputs' first messages name (the IMU's frame_id, the odometry's
+  // child_frame_id or ~base_frame), and whether their extrinsics were looked up.
+  std::optional<std::string> imu_frame_, wheel_frame_;
   bool imu_extrinsic_resolved_ = false, wheel_extrinsic_resolved_ = false;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;

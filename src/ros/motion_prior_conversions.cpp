@@ -10,7 +10,7 @@
 namespace adaptive_lego_loam::ros_bridge {
 namespace {
 
-constexpr double kGravityArrowLength = 2.0;  // m
+constexpr double kGravityArrowLength = 5.0;  // m: above the degeneration markers' text
 
 template <int N, std::size_t Size>
 void set_matrix(boost::array<double, Size>& out, const Eigen::Matrix<double, N, N>& m) {
@@ -93,8 +93,9 @@ MapMatch map_match_to_ros(const MapMatchResult& match,
 
 MappingFeedback mapping_feedback_from_ros(const MapMatch& msg, const std::string& source) {
   MappingFeedback feedback;
+  feedback.matched = msg.matched;
   feedback.information = matrix_of<6>(msg.information, source, "information");
-  if (msg.matched && msg.has_motion) feedback.motion = pose_from_ros(msg.motion, source);
+  if (msg.has_motion) feedback.motion = pose_from_ros(msg.motion, source);
   return feedback;
 }
 
@@ -115,9 +116,9 @@ visualization_msgs::Marker gravity_marker(const MotionPriors& msg) {
   head.y = kGravityArrowLength * msg.up.y;
   head.z = kGravityArrowLength * msg.up.z;
   arrow.points = {tail, head};
-  arrow.scale.x = 0.15;  // shaft diameter
-  arrow.scale.y = 0.35;  // head diameter
-  arrow.scale.z = 0.5;   // head length
+  arrow.scale.x = 0.3;  // shaft diameter
+  arrow.scale.y = 0.7;  // head diameter
+  arrow.scale.z = 1.0;  // head length
   arrow.color.r = 0.2f;
   arrow.color.g = 0.6f;
   arrow.color.b = 1.0f;

@@ -34,17 +34,21 @@ void add_input(const std::string& name, const std::string& topic, const InputSta
   status.add(name + " scans LiDAR-only", std::to_string(fallbacks));
 }
 
-// WARN on the faults since the last report, and while the input has fallen back.
+using Reported = MotionSensorDiagnostics::Reported;
+
+// WARN on faults since the last report, and while the input has fallen back or fell back since.
 void raise_input(const std::string& name, const std::string& topic, const InputStatus& input,
-                 bool in_use, long scans, long& dropped_before, HealthStatus& status) {
+                 bool in_use, long scans, long fallbacks, Reported& before, HealthStatus& status) {
   if (input.accepted == 0 && input.dropped() == 0) {
     status.raise(HealthLevel::kWarn, "no " + name + " sample on " + topic);
   }
-  if (input.dropped() > dropped_before) {
+  if (input.dropped() > before.dropped) {
     status.raise(HealthLevel::kWarn, name + " samples dropped (faults)");
   }
-  dropped_before = input.dropped();
-  if (scans > 0 && !in_use) status.raise(HealthLevel::kWarn, name + " fell back to LiDAR-only");
+  if ((scans > 0 && !in_use) || fallbacks > before.fallbacks) {
+    status.raise(HealthLevel::kWarn, name + " fell back to LiDAR-only");
+  }
+  before = {input.dropped(), fallbacks};
 }
 
 }  // namespace
@@ -64,7 +68,8 @@ void MotionSensorDiagnostics::add_to(const MotionSensorRelay& relay, HealthStatu
     status.add("IMU extrinsic", imu_extrinsic_);
     status.add("gyro bias (rad/s)", vector_text(s.gyro_bias));
     status.add("accel bias (m/s^2)", vector_text(s.accel_bias));
-    raise_input("IMU", imu_topic_, s.imu, s.imu_in_use, s.imu_scans, imu_dropped_, status);
+    raise_input("IMU", imu_topic_, s.imu, s.imu_in_use, s.imu_scans, s.imu_fallbacks, imu_reported_,
+                status);
   }
   if (relay.inputs().wheel) {
     add_input("wheel odometry", wheel_topic_, s.wheel, s.wheel_in_use, s.wheel_scans,
@@ -74,7 +79,7 @@ void MotionSensorDiagnostics::add_to(const MotionSensorRelay& relay, HealthStatu
     status.add("wheel odometry scale sigma", number(s.wheel_scale_sigma, "%.2g"));
     status.add("wheel odometry extrinsic", wheel_extrinsic_);
     raise_input("wheel odometry", wheel_topic_, s.wheel, s.wheel_in_use, s.wheel_scans,
-                wheel_dropped_, status);
+                s.wheel_fallbacks, wheel_reported_, status);
   }
   status.add("scans processed on the sensor timeout (total)", std::to_string(relay.timeouts()));
   status.add("scans without mapping feedback (total)", std::to_string(relay.missed_feedback()));

@@ -25,6 +25,10 @@ bool MotionSensorRelay::InputQueue::behind(double stamp) const {
   return last_arrival_s && *newest < stamp;
 }
 
+bool MotionSensorRelay::InputQueue::silent(double now_s, double timeout_s) const {
+  return !last_arrival_s || now_s - *last_arrival_s >= timeout_s;
+}
+
 bool MotionSensorRelay::InputQueue::receive(double stamp, double now_s) {
   last_arrival_s = now_s;
   const bool went_back = newest && stamp + kJumpBack < *newest;
@@ -70,12 +74,17 @@ void MotionSensorRelay::add_feedback(double stamp, const std::optional<Eigen::Is
 }
 
 ScanRelease MotionSensorRelay::release(double stamp, double waiting_since_s, double now_s) const {
-  const bool behind =
-      (inputs_.imu && imu_.behind(stamp)) || (inputs_.wheel && wheel_.behind(stamp));
+  bool behind = false, coming = false;
+  for (const auto& [used, queue] : {std::pair{inputs_.imu, &imu_}, {inputs_.wheel, &wheel_}}) {
+    if (!used || !queue->behind(stamp)) continue;
+    behind = true;
+    coming |= !queue->silent(now_s, timeout_s_);
+  }
   if (!behind && !awaiting_feedback_) return ScanRelease::kReady;
-  // The samples are waited for from when this scan was complete, the feedback from when the
-  // previous scan was predicted.
-  const bool samples_due = behind && now_s - waiting_since_s < timeout_s_;
+  // The samples are waited for from when this scan was complete, while their input sends (one
+  // silent for the timeout has stopped: the scans go on without it, not each after a timeout);
+  // the feedback from when the previous scan was predicted.
+  const bool samples_due = coming && now_s - waiting_since_s < timeout_s_;
   const bool feedback_due = awaiting_feedback_ && now_s - predicted_at_s_ < timeout_s_;
   return samples_due || feedback_due ? ScanRelease::kWait : ScanRelease::kTimeout;
 }

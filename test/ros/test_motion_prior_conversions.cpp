@@ -96,7 +96,7 @@ TEST(MotionPriorConversions, ANonFiniteInformationIsAnErrorNamingTheTopic) {
   EXPECT_THROW(motion_priors_from_ros(msg, "/motion_priors"), IoError);
 }
 
-TEST(MotionPriorConversions, TheMappingsFeedbackCarriesTheMotionOnlyWhenMatched) {
+TEST(MotionPriorConversions, TheMappingsFeedbackTeachesTheSensorsOnlyWhenMatched) {
   MapMatchResult match;
   match.matched = true;
   match.information = an_information();
@@ -104,13 +104,17 @@ TEST(MotionPriorConversions, TheMappingsFeedbackCarriesTheMotionOnlyWhenMatched)
   const MapMatch msg = map_match_to_ros(match, a_motion(), scan_header());
   EXPECT_EQ(msg.degenerate_directions, 2);
   const MappingFeedback feedback = mapping_feedback_from_ros(msg, "map_match");
-  ASSERT_TRUE(feedback.motion);
-  EXPECT_TRUE(feedback.motion->isApprox(a_motion(), 1e-12));
+  ASSERT_TRUE(feedback.matched_motion());
+  EXPECT_TRUE(feedback.matched_motion()->isApprox(a_motion(), 1e-12));
   EXPECT_EQ(feedback.information, an_information());
 
-  match.matched = false;  // the pose is the guess: nothing to learn from
-  EXPECT_FALSE(
-      mapping_feedback_from_ros(map_match_to_ros(match, a_motion(), scan_header()), "m").motion);
+  // The pose is the guess: nothing to learn from, but the odometry still takes the motion.
+  match.matched = false;
+  const MappingFeedback unmatched =
+      mapping_feedback_from_ros(map_match_to_ros(match, a_motion(), scan_header()), "m");
+  EXPECT_FALSE(unmatched.matched_motion());
+  ASSERT_TRUE(unmatched.motion);
+  EXPECT_TRUE(unmatched.motion->isApprox(a_motion(), 1e-12));
   match.matched = true;  // the first scan: no motion yet
   const MapMatch first = map_match_to_ros(match, std::nullopt, scan_header());
   EXPECT_FALSE(first.has_motion);
@@ -126,7 +130,7 @@ TEST(MotionPriorConversions, TheGravityArrowPointsUpFromTheSensor) {
   ASSERT_EQ(arrow.points.size(), 2u);
   EXPECT_EQ(arrow.points[0].z, 0.0);
   const Eigen::Vector3d head(arrow.points[1].x, arrow.points[1].y, arrow.points[1].z);
-  EXPECT_NEAR(head.norm(), 2.0, 1e-9);
+  EXPECT_NEAR(head.norm(), 5.0, 1e-9);
   EXPECT_GT(head.normalized().dot(a_prediction().gravity->up), 1.0 - 1e-12);
   EXPECT_EQ(gravity_marker(motion_priors_to_ros(nullptr, scan_header())).action,
             visualization_msgs::Marker::DELETE);

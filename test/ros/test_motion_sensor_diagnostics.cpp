@@ -72,3 +72,32 @@ TEST(MotionSensorDiagnostics, WarnsWhenAConfiguredInputSentNothing) {
   EXPECT_EQ(status.message.find("no IMU sample"), std::string::npos) << status.message;
   EXPECT_EQ(values_of(status)["wheel odometry in use"], "no");
 }
+
+TEST(MotionSensorDiagnostics, WarnsWhileAnInputThatWasInUseIsOut) {
+  MotionSensorRelay relay(Config(), {false, true}, 0.2);
+  MotionSensorDiagnostics diagnostics("", "/odom");
+  const auto wheel_at = [](double t) {
+    WheelOdometrySample sample;
+    sample.stamp = t;
+    sample.linear_velocity.x() = 5.0;
+    return sample;
+  };
+  for (int i = 0; i <= 10; ++i)
+    relay.add_wheel(wheel_at(i * 0.02), 0.0);  // up to 0.2 s, then nothing
+  for (double stamp : {0.1, 0.2}) {
+    relay.predict(stamp, 0.1, ScanRelease::kReady, 0.0);
+    relay.add_feedback(stamp, std::nullopt, Matrix6d::Zero());
+  }
+  HealthStatus in_use;
+  diagnostics.add_to(relay, in_use);
+  EXPECT_EQ(values_of(in_use)["wheel odometry in use"], "yes");
+  EXPECT_EQ(in_use.level, HealthLevel::kOk) << in_use.message;
+
+  relay.predict(0.6, 0.1, ScanRelease::kTimeout, 0.0);  // the wheel stopped
+  HealthStatus out;
+  diagnostics.add_to(relay, out);
+  EXPECT_EQ(values_of(out)["wheel odometry scans LiDAR-only"], "1");
+  EXPECT_EQ(out.level, HealthLevel::kWarn);
+  EXPECT_NE(out.message.find("wheel odometry fell back to LiDAR-only"), std::string::npos)
+      << out.message;
+}

@@ -147,14 +147,17 @@ TEST(MotionSensorRelay, AnInputThatNeverSentIsNotWaitedFor) {
   EXPECT_EQ(relay.release(0.1, 0.0, 0.0), ScanRelease::kReady);
 }
 
-TEST(MotionSensorRelay, ASilentInputHoldsAScanOnlyUntilTheTimeout) {
+TEST(MotionSensorRelay, ASilentInputHoldsOneScanUntilTheTimeoutNotEach) {
   MotionSensorRelay relay(mounted_config(), {true, false}, kTimeout);
   relay.add_imu(imu_at(0.05), 1.0);
-  // The IMU stopped at 0.05 s: each scan waits from when it was complete, then goes on.
+  // The IMU stopped at 0.05 s: the scan at 0.1 s waits while a sample may still come.
   EXPECT_EQ(relay.release(0.1, 1.0, 1.1), ScanRelease::kWait);
   EXPECT_EQ(relay.release(0.1, 1.0, 1.25), ScanRelease::kTimeout);
-  EXPECT_EQ(relay.release(0.2, 1.5, 1.6), ScanRelease::kWait);
-  EXPECT_EQ(relay.release(0.2, 1.5, 1.75), ScanRelease::kTimeout);
+  // Later scans of the gap go on at once: the IMU has been silent that long.
+  EXPECT_EQ(relay.release(0.2, 1.3, 1.3), ScanRelease::kTimeout);
+  // It is back: a scan waits for it again.
+  relay.add_imu(imu_at(0.3), 1.4);
+  EXPECT_EQ(relay.release(0.4, 1.45, 1.5), ScanRelease::kWait);
 }
 
 TEST(MotionSensorRelay, SamplesThatLagHoldAScanOnlyUntilTheTimeout) {

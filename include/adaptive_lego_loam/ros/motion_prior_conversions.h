@@ -26,21 +26,26 @@ MotionPriors motion_priors_to_ros(const MotionPrediction* prediction,
 // on a non-finite number or a zero quaternion.
 MotionPrediction motion_priors_from_ros(const MotionPriors& msg, const std::string& source);
 
-// What MotionSensors::update needs of a mapped scan.
+// What feature_association learns of a mapped scan: the mapped motion since the previous scan
+// (the odometry's motion model) and what MotionSensors::update takes.
 struct MappingFeedback {
-  std::optional<Eigen::Isometry3d> motion;  // the mapped motion, when the scan was matched
+  std::optional<Eigen::Isometry3d> motion;  // MappingOutput::motion (none on the first scan)
+  bool matched = false;
   Matrix6d information = Matrix6d::Zero();  // MapMatchResult::information
+  // MotionSensors::update's motion: only of a matched scan, as the offline pipeline hands it.
+  std::optional<Eigen::Isometry3d> matched_motion() const {
+    return matched ? motion : std::nullopt;
+  }
 };
 
 // `match` and the mapped motion since the previous scan (MappingOutput's), when known.
 MapMatch map_match_to_ros(const MapMatchResult& match,
                           const std::optional<Eigen::Isometry3d>& motion,
                           const std_msgs::Header& header);
-// The motion only when the scan was matched and its motion known (as the offline pipeline hands
-// it to MotionSensors::update). Throws IoError naming `source` on a non-finite number.
+// Throws IoError naming `source` on a non-finite number or a zero quaternion.
 MappingFeedback mapping_feedback_from_ros(const MapMatch& msg, const std::string& source);
 
-// An arrow from the sensor along gravity's up direction (the message's frame), 2 m long; deleted
+// An arrow from the sensor along gravity's up direction (the message's frame), 5 m long; deleted
 // when the priors have no gravity.
 visualization_msgs::Marker gravity_marker(const MotionPriors& msg);
 

@@ -3,8 +3,8 @@
 // the latest scan used it, its rate, gaps, samples accepted and dropped by fault, the scans it
 // took part in and those that fell back to LiDAR-only, where its extrinsic came from; the IMU's
 // biases and the wheel odometry's scale; the scans processed on the timeout. WARN while an input
-// that was in use has fallen back to LiDAR-only, when an input dropped samples since the last
-// report, and when a configured input has sent nothing.
+// that was in use is out (LiDAR-only) or when it fell back since the last report, when an input
+// dropped samples since the last report, and when a configured input has sent nothing.
 
 #include <string>
 #include <utility>
@@ -23,13 +23,18 @@ class MotionSensorDiagnostics {
   void set_imu_extrinsic_source(const std::string& source) { imu_extrinsic_ = source; }
   void set_wheel_extrinsic_source(const std::string& source) { wheel_extrinsic_ = source; }
 
-  // Adds the values and raises the level; remembers the drop counts to tell new faults next time.
+  // Adds the values and raises the level; remembers the counts to tell what is new next time.
   void add_to(const MotionSensorRelay& relay, HealthStatus& status);
+
+  // An input's counts at the last report.
+  struct Reported {
+    long dropped = 0, fallbacks = 0;
+  };
 
  private:
   std::string imu_topic_, wheel_topic_;
   std::string imu_extrinsic_ = "config", wheel_extrinsic_ = "config";
-  long imu_dropped_ = 0, wheel_dropped_ = 0;
+  Reported imu_reported_, wheel_reported_;
 };
 
 }  // namespace adaptive_lego_loam::ros_bridge

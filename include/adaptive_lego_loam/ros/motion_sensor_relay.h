@@ -3,10 +3,11 @@
 // MotionSensors, so that the graph predicts each scan as run_sequence does. The samples are queued
 // in the order they arrive. A scan is held until every configured input has sent a sample at or
 // after its stamp and the mapping's feedback on the previous scan has come back, or until a
-// timeout; then the previous scan's feedback is applied (MotionSensors::update, nothing mapped
-// when it never came), the samples up to the scan's stamp are handed over in arrival order (as
-// run_sequence hands them over), and the scan is predicted. No ROS: times are steady-clock
-// seconds, so that the logic is tested without a graph.
+// timeout (an input silent for the timeout is not waited for: a gap holds one scan, not each); then
+// the previous scan's feedback is applied (MotionSensors::update, nothing mapped when it never
+// came), the samples up to the scan's stamp are handed over in arrival order (as run_sequence hands
+// them over), and the scan is predicted. No ROS: times are steady-clock seconds, so that the logic
+// is tested without a graph.
 
 #include <Eigen/Geometry>
 #include <array>
@@ -95,6 +96,8 @@ class MotionSensorRelay {
     std::array<bool, kSampleFaultKinds> reported{};
     // It has sent samples, none at or after `stamp` yet.
     bool behind(double stamp) const;
+    // Nothing came for the timeout.
+    bool silent(double now_s, double timeout_s) const;
     // Notes a sample at `stamp` (offset added); false when time went back (clear the queue).
     bool receive(double stamp, double now_s);
   };
