@@ -30,7 +30,18 @@ METHODS = {  # name: run_sequence arguments
     "adaptive mu alone": ["--adaptive"],
     "adaptive skeleton share": ["--adaptive"],
     "none": ["--no-segmentation"],
+    "adaptive + IMU": ["--adaptive"],
+    "adaptive + wheel": ["--adaptive"],
+    "adaptive + IMU + wheel": ["--adaptive"],
 }
+# Methods that also take the drive's simulated motion sensors (lidar_sim --imu --wheel-odom): its
+# sensors.yaml after the sensor's config (the true extrinsics and noise) and the samples.
+MOTION_INPUTS = {
+    "adaptive + IMU": ["imu"],
+    "adaptive + wheel": ["wheel"],
+    "adaptive + IMU + wheel": ["imu", "wheel"],
+}
+LIDAR_METHODS = [m for m in METHODS if m not in MOTION_INPUTS]
 # Methods that also change the sensor's config: ambient_filter keys and their values. "adaptive
 # d3" is the adaptive filter with the Euclidean criterion of the paper's text (the 3-D distance)
 # and its 7 x 7 window (w 3), where the configs use the authors' range difference with w 5;
@@ -55,7 +66,8 @@ DRIVE_BYTES_PER_SCAN = {"hdl64e": 2.0e6, "vlp16": 0.5e6}
 
 def scenarios(quick):
     """(name, lidar_sim scenario, KITTI sequence whose trajectory it drives or None, first frame,
-    frames). The seeds vary the scene around the same trajectory."""
+    frames). The seeds vary the scene around the same trajectory. The tunnels take 600 scans: the
+    drive enters at speed, brakes to 5 m/s inside and accelerates back (simulator.md)."""
     frames = 100 if quick else 300
     full = [
         ("green_highway", "green_highway", "01", 0, frames),
@@ -65,9 +77,15 @@ def scenarios(quick):
         ("highway", "highway", "01", 0, frames),
         ("loop", "loop", None, 0, frames + 100),
         ("vegetation", "vegetation", None, 0, frames),
-        ("tunnel", "tunnel", None, 0, frames),
+        ("tunnel", "tunnel", None, 0, 2 * frames),
+        ("bare_tunnel", "bare_tunnel", None, 0, 2 * frames),
+        ("corridor", "corridor", None, 0, frames + 100),
     ]
     return full[:3] if quick else full
+
+
+# Scenarios for one sensor only: the corridor is a robot's VLP-16 indoors.
+SCENARIO_SENSORS = {"corridor": ["vlp16"]}
 
 
 SUITE_SEEDS = [1, 2, 3, 23, 24, 25]  # 4-22 chose the filter's settings (METHOD.md steps 7-8)
@@ -144,7 +162,8 @@ class Runner:
         if (out / "poses.txt").exists():
             return out
         command = [self.bin / "lidar_sim", "--scenario", scenario, "--sensor", sensor,
-                   "--frames", frames, "--seed", seed, "--output", out, "--overwrite"]
+                   "--frames", frames, "--seed", seed, "--output", out, "--overwrite", "--imu",
+                   "--wheel-odom"]
         if self.foliage_density is not None:
             command += ["--foliage-density", self.foliage_density]
         if sequence:
@@ -173,9 +192,15 @@ class Runner:
         """run_sequence with `method`, then evaluate_odometry; returns both JSONs' figures."""
         config = self.method_config(config, method)
         if not (out / "metrics.json").exists():
+            inputs = []
+            for sensor in MOTION_INPUTS.get(method, []):
+                if not inputs:
+                    inputs = ["--config", sequence / "sensors.yaml"]
+                inputs += (["--imu", sequence / "imu.csv"] if sensor == "imu"
+                           else ["--wheel-odom", sequence / "wheel_odom.csv"])
             # Logs beside the run's folder, named after it whole (a method may hold a dot).
-            self.run([self.bin / "run_sequence", "--config", config, "--input", sequence,
-                      "--output", out, "--cpu-time"] + self.methods[method],
+            self.run([self.bin / "run_sequence", "--config", config] + inputs +
+                     ["--input", sequence, "--output", out, "--cpu-time"] + self.methods[method],
                      out.parent / f"{out.name}.log")
             command = [self.bin / "evaluate_odometry", "--gt", gt or sequence / "poses.txt",
                        "--est", out / "poses_kitti.txt", "--json", out / "metrics.json"]
@@ -185,8 +210,13 @@ class Runner:
         summary = json.loads((out / "summary.json").read_text())
         metrics = json.loads((out / "metrics.json").read_text())
         kitti = metrics.get("kitti") or {}
+        drift = metrics.get("drift") or {}
         return {
             "t_err": kitti.get("t_err_percent"),
+            "reach": drift.get("reach_ratio"),
+            "along_track": drift.get("along_track_percent"),
+            "cross_track": drift.get("cross_track_percent"),
+            "motion_sensors": summary.get("motion_sensors"),
             "r_err": kitti.get("r_err_deg_per_100m"),
             "rpe": metrics["rpe"]["translation_rmse_m"],
             "ate": metrics["ate"]["rmse_m"],
@@ -224,7 +254,8 @@ class Runner:
         self.check_simulation_settings()
         drives = [(name, scenario, sequence, first, frames, sensor, seed)
                   for name, scenario, sequence, first, frames in scenarios(quick)
-                  for sensor in sensors for seed in seed_list or seeds(quick)]
+                  for sensor in sensors if sensor in SCENARIO_SENSORS.get(name, sensors)
+                  for seed in seed_list or seeds(quick)]
         self.check_disk_space(drives)
         generate = []
         for drive in drives:
@@ -256,7 +287,7 @@ class Runner:
                               "semantickitti_poses.txt"))
         runs = []
         for label, folder, gt in sequences:
-            for method in self.methods:
+            for method in LIDAR_METHODS:  # the real scans come without motion sensors
                 out = self.work / "real" / folder.name / method.replace(" ", "")
                 runs.append((f"KITTI {label} {method}",
                              lambda l=label, f=folder, g=gt, m=method, o=out:

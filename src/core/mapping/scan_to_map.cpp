@@ -343,8 +343,11 @@ void SteppedMapMatch::State::make_motion_cost() {
   Eigen::Isometry3d placed = Eigen::Isometry3d::Identity();
   placed.linear() = rotation.toRotationMatrix();
   placed.translation() = translation;
-  result.lidar_observability =
-      observability(correspondence_information(matches, placed, params.huber_loss, sigma));
+  Matrix6d lidar = correspondence_information(matches, placed, params.huber_loss, sigma);
+  if (sensors.scene) {
+    lidar = discounted_along(lidar, sensors.scene->weak_direction, 1.0 - sensors.scene->mu);
+  }
+  result.lidar_observability = observability(lidar);
   motion_information = on_degenerate_directions(
       sensors.motion->information, *result.lidar_observability, params.degenerate_translation_sigma,
       params.degenerate_rotation_sigma_deg * M_PI / 180.0);

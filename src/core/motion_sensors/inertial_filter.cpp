@@ -175,8 +175,15 @@ void InertialFilter::inject(const Eigen::Matrix<double, kSize, 1>& error) {
   state_.rotation = state_.rotation * rotation_exp(error.segment<3>(kAttitude));
   state_.velocity += error.segment<3>(kVelocity);
   state_.position += error.segment<3>(kPosition);
-  state_.gyro_bias += error.segment<3>(kGyroBias);
-  state_.accel_bias += error.segment<3>(kAccelBias);
+  // A bias beyond three of its start-up sigmas is not the sensor's: what was taken for it is
+  // another error (a LiDAR that measured a motion it could not see).
+  const auto bounded = [](const Eigen::Vector3d& bias, double sigma) {
+    return bias.cwiseMax(-3.0 * sigma).cwiseMin(3.0 * sigma).eval();
+  };
+  state_.gyro_bias =
+      bounded(state_.gyro_bias + error.segment<3>(kGyroBias), params_.gyro_bias_sigma);
+  state_.accel_bias =
+      bounded(state_.accel_bias + error.segment<3>(kAccelBias), params_.accel_bias_sigma);
   clone_rotation_ = clone_rotation_ * rotation_exp(error.segment<3>(kCloneAttitude));
   clone_position_ += error.segment<3>(kClonePosition);
 }

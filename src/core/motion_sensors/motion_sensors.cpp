@@ -27,8 +27,11 @@ constexpr double kUnknownVelocitySigma = 10.0;  // m/s
 // The wheel's sideways and vertical speed of the base: 0 but for side slip and bumps.
 constexpr double kSideSpeedSigma = 0.05;  // m/s
 constexpr double kSideSpeedShare = 0.02;  // of the speed
-// A wheel velocity further than this from the filter's (RMS sigmas) is slip.
+// A wheel velocity further than this from the filter's (RMS sigmas) is slip; slips last about a
+// second, and no scale is learned within one of one.
 constexpr double kWheelGate = 5.0;
+constexpr double kLongestSlip = 2.0;  // s
+constexpr double kSlipQuiet = 1.0;    // s
 // Without an IMU: the speed a vehicle can change by in a scan interval before the wheel is
 // taken to slip (m/s per s), beyond three of the odometry's sigmas.
 constexpr double kMaxAcceleration = 5.0;
@@ -181,7 +184,17 @@ void MotionSensors::apply_wheel(const WheelOdometrySample& wheel, const Eigen::V
                                      imu_from_base.translation(), imu_from_base.linear(), gyro,
                                      yaw_only, kWheelGate)) {
     ++status_.wheel_slips;
+    if (!refused_since_) refused_since_ = wheel.stamp;
+    last_refusal_ = wheel.stamp;
+    // A slip lasts a second or so; refused for longer, the filter is the one that is wrong (it
+    // took the start of a slip for speed): it starts again from the LiDAR.
+    if (wheel.stamp - *refused_since_ > kLongestSlip) {
+      filter_.reset();
+      refused_since_.reset();
+    }
+    return;
   }
+  refused_since_.reset();
 }
 
 void MotionSensors::propagate_to(double stamp) {
@@ -267,7 +280,7 @@ void MotionSensors::predict_with_wheel(double stamp) {
 }
 
 void MotionSensors::update(const std::optional<Eigen::Isometry3d>& mapped_motion,
-                           const Matrix6d& information) {
+                           const Matrix6d& information, bool prior_held) {
   if (!active()) return;
   const std::optional<Eigen::Isometry3d>& lidar_motion = mapped_motion;
   if (status_.imu_in_use) {
@@ -300,7 +313,8 @@ void MotionSensors::update(const std::optional<Eigen::Isometry3d>& mapped_motion
   motions_in_a_row_ = lidar_motion ? motions_in_a_row_ + 1 : 0;
   const double dt = interval_start_ ? stamp_ - *interval_start_ : 0.0;
   if (lidar_motion && dt > 0.0) {
-    if (wheel_motion_ && motions_in_a_row_ > kStartAfterMotions) {
+    const bool after_slip = last_refusal_ && stamp_ - *last_refusal_ < kSlipQuiet;
+    if (wheel_motion_ && motions_in_a_row_ > kStartAfterMotions && !prior_held && !after_slip) {
       learn_wheel_scale(*lidar_motion, information);
     }
     const Eigen::Isometry3d base_motion =

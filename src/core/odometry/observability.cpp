@@ -36,4 +36,11 @@ Observability observability(const Eigen::Matrix<double, 6, 6>& information) {
   return out;
 }
 
+Eigen::Matrix<double, 6, 6> discounted_along(const Eigen::Matrix<double, 6, 6>& information,
+                                             const Eigen::Vector3d& direction, double keep) {
+  Eigen::Matrix<double, 6, 6> scale = Eigen::Matrix<double, 6, 6>::Identity();
+  scale.bottomRightCorner<3, 3>() += (keep - 1.0) * direction * direction.transpose();
+  return scale * information * scale;
+}
+
 }  // namespace adaptive_lego_loam

@@ -253,11 +253,13 @@ void LidarMapping::add_keyframe(const FeatureSet& features, double stamp, bool d
     places_.forget(first, last);
 }
 
-SensorPriors LidarMapping::sensor_priors(const MotionPrediction* sensors) const {
+SensorPriors LidarMapping::sensor_priors(const MotionPrediction* sensors,
+                                         const std::optional<SceneDegeneration>& scene) const {
   SensorPriors priors;
   if (!sensors || scans_ == 0) return priors;
   priors.previous = pose_;
   priors.motion = sensors->motion;
+  priors.scene = scene;
   if (const std::optional<Eigen::Vector3d> up = map_gravity_.up(); up && sensors->gravity) {
     priors.gravity = sensors->gravity;
     priors.map_up = *up;
@@ -267,7 +269,8 @@ SensorPriors LidarMapping::sensor_priors(const MotionPrediction* sensors) const 
 
 void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose,
                            double stamp, const std::optional<WeakDirectionPrior>& prior,
-                           MappingOutput& out, const MotionPrediction* sensors) {
+                           MappingOutput& out, const MotionPrediction* sensors,
+                           const std::optional<SceneDegeneration>& scene) {
   Stopwatch watch;
   out.times.clear();
   const Eigen::Isometry3d motion = last_odometry_pose_
@@ -298,7 +301,7 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
       wall_normals_ =
           wall_normals(*features.less_flat, pose.linear(), params_.vertical_prior_max_tilt_deg);
     }
-    const SensorPriors priors = sensor_priors(sensors);
+    const SensorPriors priors = sensor_priors(sensors, scene);
     if (localization_) {
       may_be_keyframe = localize(features, *corners, *surfaces, stamp, prior, priors, pose, out);
     } else {

@@ -1,5 +1,7 @@
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
 
+#include "adaptive_lego_loam/core/odometry/observability.h"
+
 namespace adaptive_lego_loam {
 
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
@@ -14,6 +16,12 @@ std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& para
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
                                                        const AmbientFilterResult& filtered) {
   return weak_direction_prior(params, filtered.degeneration, filtered.mu);
+}
+
+std::optional<SceneDegeneration> scene_degeneration(const AmbientFilterResult& filtered) {
+  if (!filtered.degeneration.valid) return std::nullopt;
+  const Eigen::Vector2d& weak = filtered.degeneration.weak_direction;
+  return SceneDegeneration{Eigen::Vector3d(weak.x(), weak.y(), 0.0), filtered.mu};
 }
 
 Pipeline::Pipeline(const Config& config)
@@ -60,13 +68,18 @@ const FrameResult& Pipeline::process(const Scan& scan) {
   result_.flat = static_cast<int>(features.flat->size());
   result_.less_flat = static_cast<int>(features.less_flat->size());
 
+  const std::optional<SceneDegeneration> scene = scene_degeneration(filtered_);
   mapping_.process(features, odometry_out_.pose, scan.stamp,
-                   weak_direction_prior(config_.mapping, filtered_), mapping_out_, sensors);
+                   weak_direction_prior(config_.mapping, filtered_), mapping_out_, sensors, scene);
   if (motion_.active()) {
     Stopwatch watch;
-    // What the LiDAR saw of this scan's motion teaches the sensors (biases, scale, velocity).
+    // What the LiDAR saw of this scan's motion teaches the sensors (biases, scale, velocity); along
+    // the scene's weak direction only in the share the scene constrains it.
     const bool mapped = mapping_out_.match.matched && mapping_out_.motion;
-    motion_.update(mapped ? mapping_out_.motion : std::nullopt, mapping_out_.match.information);
+    Matrix6d information = mapping_out_.match.information;
+    if (scene) information = discounted_along(information, scene->weak_direction, 1.0 - scene->mu);
+    motion_.update(mapped ? mapping_out_.motion : std::nullopt, information,
+                   mapping_out_.match.motion_prior);
     result_.times.add("motion_sensors", watch.lap_ms());
   }
   if (uses_mapped_motion(config_.odometry, config_.mapping) && mapping_out_.motion) {

@@ -162,3 +162,124 @@ TEST(ScanToMap, AMatchOnAnEmptyMapIsDoneAtOnceAtTheGuess) {
   EXPECT_FALSE(stepped.result().matched);
   EXPECT_EQ(stepped.result().pose.matrix(), guess.matrix());
 }
+
+namespace {
+
+// A corridor along x: a floor and two walls, nothing that fixes the motion along it. The floor
+// and the walls stop short of each other: where two surfaces meet, a plane fitted to a few of
+// both leans along the corridor and measures it falsely.
+CloudPtr corridor() {
+  CloudPtr cloud(new Cloud);
+  auto add = [&cloud](float x, float y, float z) {
+    CloudPoint p;
+    p.x = x;
+    p.y = y;
+    p.z = z;
+    cloud->push_back(p);
+  };
+  for (float x = -20.f; x <= 20.f; x += 0.1f) {
+    for (float v = -0.75f; v <= 0.75f; v += 0.1f) {
+      add(x, v, -1.5f);
+      add(x, -1.5f, v + 0.5f);
+      add(x, 1.5f, v + 0.5f);
+    }
+  }
+  return cloud;
+}
+
+// Known to a millimetre in every direction.
+MotionPrior exact_prior(const Eigen::Isometry3d& motion) {
+  MotionPrior prior;
+  prior.motion = motion;
+  prior.information = Matrix6d::Identity() * 1e6;
+  return prior;
+}
+
+}  // namespace
+
+TEST(ScanToMap, APriorHoldsTheDirectionTheSceneLeavesOpenAndOnlyThat) {
+  MappingParams params = one_keyframe_params();
+  params.residual_sigma = 0.05;
+  LocalMap map(params);
+  Keyframe keyframe;
+  keyframe.corners = pack(Cloud());
+  keyframe.surfaces = pack(*corridor());
+  map.update({keyframe}, Eigen::Vector3d::Zero());
+  // The sensor moved 1 m along the corridor; the guess says 0.6 m, the prior 1.0 m.
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  truth.translation() = Eigen::Vector3d(1.0, 0.1, 0.0);
+  const CloudPtr scan = voxel_filter(*transform_cloud(*corridor(), truth.inverse()), 0.3);
+  Eigen::Isometry3d guess = truth;
+  guess.translation() += Eigen::Vector3d(-0.4, 0.05, 0.02);
+
+  const MapMatchResult alone = ScanToMapMatcher(params).match(Cloud(), *scan, map, guess);
+  ASSERT_TRUE(alone.matched);
+  // The scene fixes y and z, not x: the LiDAR leaves x at its guess and says so.
+  EXPECT_NEAR(alone.pose.translation().y(), 0.1, 0.01);
+  EXPECT_NEAR(alone.pose.translation().x(), 0.6, 0.01);
+  EXPECT_GT(observability(alone.information).weakest_sigma(), 1.0);
+  EXPECT_GT(std::fabs(observability(alone.information).weakest_direction().x()), 0.99);
+
+  SensorPriors sensors;
+  sensors.previous = Eigen::Isometry3d::Identity();
+  sensors.motion = exact_prior(truth);
+  const MapMatchResult held =
+      ScanToMapMatcher(params).match(Cloud(), *scan, map, guess, std::nullopt, {}, sensors);
+  ASSERT_TRUE(held.matched);
+  EXPECT_TRUE(held.motion_prior);
+  EXPECT_NEAR(held.pose.translation().x(), 1.0, 0.01);
+  EXPECT_NEAR(held.pose.translation().y(), 0.1, 0.01);
+  // The LiDAR's own information is the same: the prior is not counted as the scene's.
+  EXPECT_GT(observability(held.information).weakest_sigma(), 1.0);
+
+  // A prior that is wrong where the scene sees (0.3 m off in y) does not move the match there.
+  Eigen::Isometry3d wrong = truth;
+  wrong.translation().y() += 0.3;
+  sensors.motion = exact_prior(wrong);
+  const MapMatchResult kept =
+      ScanToMapMatcher(params).match(Cloud(), *scan, map, guess, std::nullopt, {}, sensors);
+  EXPECT_NEAR(kept.pose.translation().y(), 0.1, 0.01);
+}
+
+TEST(ScanToMap, InAWellConstrainedRoomThePriorChangesNothing) {
+  MappingParams params = one_keyframe_params();
+  LocalMap map(params);
+  map.update({room_keyframe()}, Eigen::Vector3d::Zero());
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  truth.translation() = Eigen::Vector3d(0.5, 0.2, 0.0);
+  const CloudPtr scan = voxel_filter(*transform_cloud(*room_corner(), truth.inverse()), 0.3);
+  Eigen::Isometry3d guess = truth;
+  guess.translation() += Eigen::Vector3d(0.1, -0.05, 0.02);
+  const MapMatchResult alone = ScanToMapMatcher(params).match(Cloud(), *scan, map, guess);
+  SensorPriors sensors;
+  Eigen::Isometry3d off = truth;
+  off.translation().x() += 0.2;
+  sensors.motion = exact_prior(off);
+  const MapMatchResult with_prior =
+      ScanToMapMatcher(params).match(Cloud(), *scan, map, guess, std::nullopt, {}, sensors);
+  EXPECT_FALSE(with_prior.motion_prior);
+  EXPECT_EQ(with_prior.pose.matrix(), alone.pose.matrix());
+}
+
+TEST(ScanToMap, GravityHoldsTheAttitudeAgainstATiltedMap) {
+  // As the vertical-structure prior: a map that drifted 2 deg in roll, a level sensor whose IMU
+  // says so; gravity pulls the pose level.
+  MappingParams params = one_keyframe_params();
+  LocalMap map(params);
+  Eigen::Isometry3d tilted = Eigen::Isometry3d::Identity();
+  tilted.linear() = Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()).matrix();
+  map.update({room_keyframe(tilted)}, Eigen::Vector3d::Zero());
+  const CloudPtr scan = voxel_filter(*room_corner(), 0.3);
+  SensorPriors sensors;
+  GravityPrior gravity;
+  gravity.up = Eigen::Vector3d::UnitZ();
+  gravity.covariance = Eigen::Matrix3d::Identity() * 1e-8;
+  sensors.gravity = gravity;
+  params.gravity_sigma_deg = 0.01;
+  params.residual_sigma = 0.05;
+  const MapMatchResult held = ScanToMapMatcher(params).match(
+      Cloud(), *scan, map, Eigen::Isometry3d::Identity(), std::nullopt, {}, sensors);
+  ASSERT_TRUE(held.matched);
+  const Eigen::Vector3d up = held.pose.linear() * Eigen::Vector3d::UnitZ();
+  EXPECT_LT(std::acos(std::min(1.0, up.z())) * 180.0 / M_PI, 0.5);
+}

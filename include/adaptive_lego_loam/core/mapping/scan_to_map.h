@@ -34,14 +34,23 @@ struct MapMatchResult {
   std::optional<Observability> lidar_observability;
 };
 
+// How the ambient filter sees the scene's structure before any match: the horizontal direction
+// it constrains least (sensor frame) and how degenerate it is (mu).
+struct SceneDegeneration {
+  Eigen::Vector3d weak_direction = Eigen::Vector3d::UnitX();
+  double mu = 0.0;
+};
+
 // The motion sensors' priors on a scan's pose (core/motion_sensors/): its motion since the
 // previous scan's mapped pose `previous` (map frame), and gravity's up in the sensor frame against
-// the map frame's up `map_up`.
+// the map frame's up `map_up`. The motion prior holds the directions the correspondences leave
+// open, their information along the scene's weak direction counted as 1 - mu of it.
 struct SensorPriors {
   Eigen::Isometry3d previous = Eigen::Isometry3d::Identity();
   std::optional<MotionPrior> motion;
   std::optional<GravityPrior> gravity;
   Eigen::Vector3d map_up = Eigen::Vector3d::UnitZ();
+  std::optional<SceneDegeneration> scene;
   bool empty() const { return !motion && !gravity; }
 };
 

@@ -53,7 +53,10 @@ class MotionSensors {
   // MotionPrior's); nothing when the scan was not mapped. The mapping's prior holds only the
   // directions the LiDAR leaves open, where its information is nil: the filter does not learn its
   // own prediction back.
-  void update(const std::optional<Eigen::Isometry3d>& mapped_motion, const Matrix6d& information);
+  // `prior_held`: the mapping's prior held a direction of this scan; its motion does not teach
+  // the wheel odometry its scale (the scale would learn its own prediction back).
+  void update(const std::optional<Eigen::Isometry3d>& mapped_motion, const Matrix6d& information,
+              bool prior_held = false);
 
   const MotionSensorsStatus& status() const { return status_; }
   const InertialFilter& filter() const { return filter_; }
@@ -101,6 +104,8 @@ class MotionSensors {
   std::optional<double> lidar_speed_;        // the base's forward speed the LiDAR measured last
   int motions_in_a_row_ = 0;                 // mapped motions (update()) since a scan went unmapped
   int refusals_in_a_row_ = 0;                // LiDAR motions the filter's gate refused
+  std::optional<double> refused_since_;      // wheel samples refused in a row since
+  std::optional<double> last_refusal_;       // of a wheel sample
   std::optional<WheelMotion> wheel_motion_;  // this scan's, for the scale
   MotionPrediction prediction_;
   MotionSensorsStatus status_;

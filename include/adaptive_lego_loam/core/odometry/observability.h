@@ -23,4 +23,11 @@ struct Observability {
 // From the information of [rotation vector, translation] (6 x 6, symmetric, possibly singular).
 Observability observability(const Eigen::Matrix<double, 6, 6>& information);
 
+// The information with its translation along the unit `direction` kept only in the share `keep`
+// (the information along it times keep^2): what correspondences say along a direction the scene's
+// structure does not constrain (the ambient filter's weak direction, keep = 1 - mu) is mostly
+// not the scene's: rings and edges fixed to the sensor.
+Eigen::Matrix<double, 6, 6> discounted_along(const Eigen::Matrix<double, 6, 6>& information,
+                                             const Eigen::Vector3d& direction, double keep);
+
 }  // namespace adaptive_lego_loam

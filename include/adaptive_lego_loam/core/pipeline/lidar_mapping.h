@@ -65,7 +65,8 @@ class LidarMapping {
   // the motion sensors' prediction of this scan (its motion and gravity priors), if any.
   void process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose, double stamp,
                const std::optional<WeakDirectionPrior>& prior, MappingOutput& out,
-               const MotionPrediction* sensors = nullptr);
+               const MotionPrediction* sensors = nullptr,
+               const std::optional<SceneDegeneration>& scene = std::nullopt);
 
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
   bool localizing() const { return localization_.has_value(); }
@@ -104,7 +105,8 @@ class LidarMapping {
                 double stamp, const std::optional<WeakDirectionPrior>& prior,
                 const SensorPriors& sensor_priors, Eigen::Isometry3d& pose, MappingOutput& out);
   // The motion sensors' priors of this scan, mapped from the previous scan's pose.
-  SensorPriors sensor_priors(const MotionPrediction* sensors) const;
+  SensorPriors sensor_priors(const MotionPrediction* sensors,
+                             const std::optional<SceneDegeneration>& scene) const;
   // This drive's keyframes but the newest `keep` give their clouds back (localization mode).
   void retire_recent_keyframes(int keep);
   // ... and then leave the list (localization mode).

@@ -39,6 +39,9 @@ struct FrameResult {
 // when mu is unknown).
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
                                                        const AmbientFilterResult& filtered);
+// The ambient filter's view of the scene for mapping: its weak direction and (smoothed) mu, when
+// this scan's mu is known.
+std::optional<SceneDegeneration> scene_degeneration(const AmbientFilterResult& filtered);
 // The same from the filter's degeneration and its (smoothed) mu, e.g. as a message carries them.
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
                                                        const Degeneration& degeneration, double mu);
