@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "adaptive_lego_loam/core/pipeline/pipeline.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/map_files.h"
 #include "adaptive_lego_loam/io/process_memory.h"
@@ -52,10 +53,11 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
       save_on_exit_(private_nh.param<std::string>("save_map_on_exit", "")),
       uses_prior_(config.mapping.weak_direction_prior > 0.0),
       uses_motion_sensors_(private_nh.param("motion_sensors", false)),
+      uses_degeneration_(uses_prior_ || uses_motion_sensors_),
       degeneration_slot_(kOdometry + 1),
-      priors_slot_(kOdometry + 1 + uses_prior_),
+      priors_slot_(kOdometry + 1 + uses_degeneration_),
       frames_(ros_bridge::load_frame_names(private_nh)),
-      pairing_("map_optimization", slot_names(uses_prior_, uses_motion_sensors_),
+      pairing_("map_optimization", slot_names(uses_degeneration_, uses_motion_sensors_),
                private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
       surround_throttle_(private_nh.param("surround_period", 1.0)),
       path_throttle_(private_nh.param("path_period", 1.0)),
@@ -89,7 +91,7 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
       nh.subscribe("outlier_cloud_last", queue, &MapOptimizationNode::on_outliers, this));
   subscriptions_.push_back(
       nh.subscribe("laser_odom_to_init", queue, &MapOptimizationNode::on_odometry, this));
-  if (uses_prior_) {
+  if (uses_degeneration_) {
     // image_projection is a whole stage ahead: a larger queue keeps its messages until the
     // features of the same scan arrive.
     subscriptions_.push_back(
@@ -238,9 +240,11 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
   const Eigen::Isometry3d odometry_pose =
       ros_bridge::pose_from_ros(odometry->pose.pose, topic(kOdometry));
   std::optional<WeakDirectionPrior> prior;
-  if (uses_prior_) {
-    prior = ros_bridge::weak_direction_prior_from_ros(
-        config_.mapping, *group.get<DegenerationState>(degeneration_slot_));
+  scene_.reset();
+  if (uses_degeneration_) {
+    const DegenerationState& degeneration = *group.get<DegenerationState>(degeneration_slot_);
+    prior = ros_bridge::weak_direction_prior_from_ros(config_.mapping, degeneration);
+    scene_ = ros_bridge::scene_degeneration_from_ros(degeneration);
   }
   // The motion sensors' priors of the scan, as the offline pipeline passes them (none: nullptr).
   std::optional<MotionPrediction> sensors;
@@ -252,7 +256,7 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
   {
     std::lock_guard<std::mutex> lock(mapping_mutex_);
     mapping_->process(features, odometry_pose, group.stamp.toSec(), prior, out_,
-                      sensors ? &*sensors : nullptr);
+                      sensors ? &*sensors : nullptr, scene_);
     sensor_frame_ = odometry->child_frame_id.empty() ? frames_.sensor : odometry->child_frame_id;
     ++mapped_scans_;
     if (mapping_->localizing() &&
@@ -329,8 +333,9 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
   // What the motion sensors learn from (before the pose: whoever waits for the pose has it).
   std_msgs::Header sensor_header = map_header;
   sensor_header.frame_id = sensor_frame_;
-  publish_shared(map_match_pub_,
-                 ros_bridge::map_match_to_ros(out_.match, out_.motion, sensor_header));
+  MapMatchResult match = out_.match;
+  match.information = sensor_feedback_information(out_.match, scene_);
+  publish_shared(map_match_pub_, ros_bridge::map_match_to_ros(match, out_.motion, sensor_header));
   publish_shared(mapped_pub_, std::move(mapped));
   tf_broadcaster_.sendTransform(
       ros_bridge::transform_to_ros(mapping_->fusion().correction(), map_header, frames_.odom));

@@ -37,7 +37,8 @@ class MapOptimizationNode {
   ~MapOptimizationNode();
 
  private:
-  // The optional slots follow the fixed ones: /degeneration (with the weak-direction prior), then
+  // The optional slots follow the fixed ones: /degeneration (with the weak-direction prior or the
+  // motion sensors), then
   // /motion_priors (with motion sensors), at degeneration_slot_ and priors_slot_.
   enum Slot : std::size_t { kCorners, kSurfaces, kOutliers, kOdometry };
 
@@ -85,6 +86,8 @@ class MapOptimizationNode {
   MappingOutput out_;
   bool uses_prior_;
   bool uses_motion_sensors_;  // ~motion_sensors: feature_association sends /motion_priors
+  bool uses_degeneration_;    // the weak-direction prior or the motion sensors weigh /degeneration
+  std::optional<SceneDegeneration> scene_;  // the scan being mapped's, from /degeneration
   std::size_t degeneration_slot_, priors_slot_;
   ros_bridge::FrameNames frames_;
   std::string sensor_frame_;

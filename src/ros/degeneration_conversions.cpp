@@ -81,14 +81,26 @@ DegenerationState degeneration_to_ros(const AmbientFilterResult& filtered,
   return msg;
 }
 
-std::optional<WeakDirectionPrior> weak_direction_prior_from_ros(const MappingParams& params,
-                                                                const DegenerationState& msg) {
+namespace {
+
+Degeneration degeneration_from_ros(const DegenerationState& msg) {
   Degeneration degeneration;
   degeneration.valid = msg.valid;
   degeneration.mu = msg.mu_raw;
   degeneration.weak_direction = Eigen::Vector2d(msg.weak_direction.x, msg.weak_direction.y);
   degeneration.normals = static_cast<int>(msg.normals);
-  return weak_direction_prior(params, degeneration, msg.mu);
+  return degeneration;
+}
+
+}  // namespace
+
+std::optional<WeakDirectionPrior> weak_direction_prior_from_ros(const MappingParams& params,
+                                                                const DegenerationState& msg) {
+  return weak_direction_prior(params, degeneration_from_ros(msg), msg.mu);
+}
+
+std::optional<SceneDegeneration> scene_degeneration_from_ros(const DegenerationState& msg) {
+  return scene_degeneration(degeneration_from_ros(msg), msg.mu);
 }
 
 visualization_msgs::MarkerArray degeneration_markers(const DegenerationState& msg) {

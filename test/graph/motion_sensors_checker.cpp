@@ -256,11 +256,26 @@ class Faults : public ::testing::Test {
   static void SetUpTestSuite() {
     run_.play();
     clean_ = read_kitti_poses(param("clean_reference") + "/poses_kitti.txt");
+    const std::string sensors_yaml = param("sensors_yaml");
+    truth_ = read_kitti_poses(sensors_yaml.substr(0, sensors_yaml.rfind('/')) + "/poses.txt");
   }
   void SetUp() override { ASSERT_TRUE(run_.graph_ready) << "the nodes did not come up"; }
   static inline PlayedDrive run_;
   static inline std::vector<Eigen::Isometry3d> clean_;
+  static inline std::vector<Eigen::Isometry3d> truth_;
 };
+
+// The largest translation and rotation differences between two trajectories from pose `from` on.
+std::pair<double, double> largest_difference(const std::vector<Eigen::Isometry3d>& a,
+                                             const std::vector<Eigen::Isometry3d>& b,
+                                             std::size_t from) {
+  double translation = 0.0, rotation = 0.0;
+  for (std::size_t i = from; i < a.size() && i < b.size(); ++i) {
+    translation = std::max(translation, (a[i].translation() - b[i].translation()).norm());
+    rotation = std::max(rotation, angle_between(a[i], b[i]));
+  }
+  return {translation, rotation};
+}
 
 TEST_F(Faults, TheRunCompletes) {
   run_.expect_every_scan_mapped();
@@ -321,20 +336,27 @@ TEST_F(Faults, DiagnosticsWarnWhileTheImuIsOut) {
   EXPECT_EQ(sensor_value(run_.recording, "IMU in use"), "yes") << "the IMU should be back";
 }
 
-// After the IMU came back and its filter started again, the drive is where the fault-free
-// drive's run put it: within the scan-to-scan jitter of the mapping (0.1-0.3 deg between the two
-// runs, as between either and the truth), and centimetres (the LiDAR-only stretch drifted).
-TEST_F(Faults, ThePosesAfterTheFaultsAreTheFaultFreeRunsWithinCentimetres) {
+// After the IMU came back and its filter started again, the drive is as close to the truth as
+// the fault-free drive's run: what the faults cost does not last. (Both runs are 0.3-0.5 m off
+// the truth from the first scans on, as the LiDAR alone is: the first sweeps are not de-skewed.)
+TEST_F(Faults, AfterTheFaultsTheDriveIsAsCloseToTheTruthAsWithoutThem) {
   ASSERT_EQ(clean_.size(), run_.drive.clouds.size());
-  const auto [translation, rotation] = run_.largest_difference(clean_);
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.3g m, %.3g deg", translation, rotation * 180.0 / M_PI);
-  RecordProperty("largest_difference_from_the_fault_free_run", text);
-  EXPECT_LT(translation, 0.05);
-  EXPECT_LT(rotation, 0.5 * M_PI / 180.0);
-  const auto [last_translation, last_rotation] = run_.largest_difference(clean_, clean_.size() - 5);
-  EXPECT_LT(last_translation, 0.03);
-  EXPECT_LT(last_rotation, 0.3 * M_PI / 180.0);
+  ASSERT_EQ(truth_.size(), run_.drive.clouds.size());
+  const std::size_t last = truth_.size() - 5;
+  const auto [error, rotation_error] = run_.largest_difference(truth_);
+  const auto [clean_error, clean_rotation_error] = largest_difference(clean_, truth_, 0);
+  const auto [last_error, last_rotation_error] = run_.largest_difference(truth_, last);
+  const auto [clean_last_error, clean_last_rotation_error] =
+      largest_difference(clean_, truth_, last);
+  char text[96];
+  std::snprintf(text, sizeof(text), "%.3g m, %.3g deg (fault-free %.3g m, %.3g deg)", last_error,
+                last_rotation_error * 180.0 / M_PI, clean_last_error,
+                clean_last_rotation_error * 180.0 / M_PI);
+  RecordProperty("largest_error_over_the_last_five_scans", text);
+  EXPECT_LT(error, clean_error + 0.05);
+  EXPECT_LT(rotation_error, clean_rotation_error + 0.3 * M_PI / 180.0);
+  EXPECT_LT(last_error, clean_last_error + 0.02);
+  EXPECT_LT(last_rotation_error, clean_last_rotation_error + 0.2 * M_PI / 180.0);
 }
 
 }  // namespace

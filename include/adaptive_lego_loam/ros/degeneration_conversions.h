@@ -21,6 +21,8 @@ DegenerationState degeneration_to_ros(const AmbientFilterResult& filtered,
 // the fields the message carries (none when the prior is off or mu unknown).
 std::optional<WeakDirectionPrior> weak_direction_prior_from_ros(const MappingParams& params,
                                                                 const DegenerationState& msg);
+// The scene's weak direction and mu the mapping's motion-sensor priors weigh (none: mu unknown).
+std::optional<SceneDegeneration> scene_degeneration_from_ros(const DegenerationState& msg);
 
 // In the message's frame: an arrow from the sensor along the weak direction, longer and redder
 // as mu grows (deleted when mu is unknown), and a text with mu and beta0 above the sensor.

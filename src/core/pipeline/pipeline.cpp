@@ -19,9 +19,19 @@ std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& para
 }
 
 std::optional<SceneDegeneration> scene_degeneration(const AmbientFilterResult& filtered) {
-  if (!filtered.degeneration.valid) return std::nullopt;
-  const Eigen::Vector2d& weak = filtered.degeneration.weak_direction;
-  return SceneDegeneration{Eigen::Vector3d(weak.x(), weak.y(), 0.0), filtered.mu};
+  return scene_degeneration(filtered.degeneration, filtered.mu);
+}
+
+std::optional<SceneDegeneration> scene_degeneration(const Degeneration& degeneration, double mu) {
+  if (!degeneration.valid) return std::nullopt;
+  const Eigen::Vector2d& weak = degeneration.weak_direction;
+  return SceneDegeneration{Eigen::Vector3d(weak.x(), weak.y(), 0.0), mu};
+}
+
+Matrix6d sensor_feedback_information(const MapMatchResult& match,
+                                     const std::optional<SceneDegeneration>& scene) {
+  if (!scene) return match.information;
+  return discounted_along(match.information, scene->weak_direction, 1.0 - scene->mu);
 }
 
 Pipeline::Pipeline(const Config& config)
@@ -73,12 +83,10 @@ const FrameResult& Pipeline::process(const Scan& scan) {
                    weak_direction_prior(config_.mapping, filtered_), mapping_out_, sensors, scene);
   if (motion_.active()) {
     Stopwatch watch;
-    // What the LiDAR saw of this scan's motion teaches the sensors (biases, scale, velocity); along
-    // the scene's weak direction only in the share the scene constrains it.
+    // What the LiDAR saw of this scan's motion teaches the sensors (biases, scale, velocity).
     const bool mapped = mapping_out_.match.matched && mapping_out_.motion;
-    Matrix6d information = mapping_out_.match.information;
-    if (scene) information = discounted_along(information, scene->weak_direction, 1.0 - scene->mu);
-    motion_.update(mapped ? mapping_out_.motion : std::nullopt, information,
+    motion_.update(mapped ? mapping_out_.motion : std::nullopt,
+                   sensor_feedback_information(mapping_out_.match, scene),
                    mapping_out_.match.motion_prior);
     result_.times.add("motion_sensors", watch.lap_ms());
   }

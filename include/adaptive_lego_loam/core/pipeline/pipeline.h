@@ -42,6 +42,11 @@ std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& para
 // The ambient filter's view of the scene for mapping: its weak direction and (smoothed) mu, when
 // this scan's mu is known.
 std::optional<SceneDegeneration> scene_degeneration(const AmbientFilterResult& filtered);
+std::optional<SceneDegeneration> scene_degeneration(const Degeneration& degeneration, double mu);
+// What the motion sensors learn from a mapped scan: the correspondences' information, along the
+// scene's weak direction only in the share the scene constrains it (1 - mu).
+Matrix6d sensor_feedback_information(const MapMatchResult& match,
+                                     const std::optional<SceneDegeneration>& scene);
 // The same from the filter's degeneration and its (smoothed) mu, e.g. as a message carries them.
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
                                                        const Degeneration& degeneration, double mu);
