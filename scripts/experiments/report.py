@@ -19,6 +19,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from suite import DEGENERATE  # noqa: E402
+
 FIXED = ["fixed 10", "fixed 30", "fixed 60"]
 SENSOR_NAMES = {"hdl64e": "HDL-64E", "vlp16": "VLP-16"}
 SCENARIO_NAMES = {
@@ -33,10 +35,8 @@ SCENARIO_NAMES = {
     "bare_tunnel": "bare tunnel",
     "corridor": "corridor",
 }
-# Scenes where the LiDAR cannot see the motion along one direction: left out of the means that
-# compare segmentations (every method loses them alike, and they would weigh a thousand times the
-# others).
-DEGENERATE = ["tunnel", "bare_tunnel", "corridor"]
+# suite.py's DEGENERATE scenes are left out of the means that compare segmentations (every method
+# loses them alike, and they would weigh a thousand times the others).
 # The motion sensors' columns (suite.py's MOTION_INPUTS) beside the LiDAR-only adaptive run.
 MOTION_METHODS = ["adaptive", "adaptive + IMU", "adaptive + wheel", "adaptive + IMU + wheel"]
 # The paper's Table I (AMD R7 5800H): precision %, ms.
@@ -200,6 +200,39 @@ class Report:
             averages = {m: mean([totals[m][i] for i in indices]) for m in present}
             lines.append(f"| **{label}** | " + " | ".join(fmt(averages[m], 3) for m in present) +
                          " |" * len(present))
+        return "\n".join(lines)
+
+    def exit_drift_table(self, sensor):
+        """The degenerate drives' drift at the exit: |along-track| / cross-track (% of the path),
+        mean over the seeds, for the adaptive run on LiDAR alone and with the motion sensors, and
+        for the dead-reckoning baselines (suite.py's dead_reckoning)."""
+        baselines = self.results.get("dead_reckoning") or []
+        cells = self.by_cell()
+        scenarios = [s for s in DEGENERATE if (s, sensor) in cells]
+        if not baselines or not scenarios:
+            return None
+        names = {"constant-velocity": "constant velocity", "wheel": "wheel odometry alone"}
+        header = "| scenario | " + " | ".join(MOTION_METHODS + list(names.values())) + " |"
+        lines = [header, "|" + "---|" * (len(MOTION_METHODS) + len(names) + 1)]
+
+        def cell(drifts, key):
+            along = mean([abs(d["along_track"]) if d.get("along_track") is not None else None
+                          for d in drifts])
+            cross = mean([d.get("cross_track") for d in drifts])
+            self.values[f"{key}/along"] = along
+            self.values[f"{key}/cross"] = cross
+            return f"{fmt(along)} / {fmt(cross)}"
+
+        for scenario in scenarios:
+            runs = cells[(scenario, sensor)]
+            row = [cell(runs.get(m, []), f"{scenario}/{sensor}/{m}/exit") for m in MOTION_METHODS]
+            for baseline in names:
+                drifts = [{"along_track": b["drift"].get("along_track_percent"),
+                           "cross_track": b["drift"].get("cross_track_percent")}
+                          for b in baselines if b["scenario"] == scenario and
+                          b["sensor"] == sensor and b["baseline"] == baseline]
+                row.append(cell(drifts, f"{scenario}/{sensor}/{baseline}/exit"))
+            lines.append(f"| {SCENARIO_NAMES[scenario]} | " + " | ".join(row) + " |")
         return "\n".join(lines)
 
     def r_err_table(self, sensor):
@@ -580,6 +613,16 @@ the seeds (where the path is too short for KITTI's segments, the reach ratio: es
 path length); then each over the LiDAR-only t_err.
 
 {table}
+""")
+            exit_table = self.exit_drift_table(sensor)
+            if exit_table:
+                sections.append(f"""Drift at the exit of the degenerate drives: along-track (its size) / cross-track error
+of the end, % of the path (`evaluate_odometry`), mean over the seeds, beside two dead-reckoning
+baselines from the first true pose: the first second's velocity kept (`--baseline
+constant-velocity`), and the simulated wheel odometry alone, scale error and slips included
+(`--baseline wheel`).
+
+{exit_table}
 """)
         per_seed = [("green_highway", "hdl64e"), ("busy_street", "hdl64e"),
                     ("busy_street", "vlp16"), ("vegetation", "vlp16")]

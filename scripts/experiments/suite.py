@@ -84,6 +84,9 @@ def scenarios(quick):
     return full[:3] if quick else full
 
 
+# Scenes where the LiDAR cannot see the motion along one direction.
+DEGENERATE = ["tunnel", "bare_tunnel", "corridor"]
+
 # Scenarios for one sensor only: the corridor is a robot's VLP-16 indoors.
 SCENARIO_SENSORS = {"corridor": ["vlp16"]}
 
@@ -277,6 +280,34 @@ class Runner:
             results.append(figures)
         return results
 
+    def dead_reckoning(self, simulated):
+        """The degenerate drives' dead-reckoning baselines (evaluate_odometry --baseline):
+        constant velocity from the first second, and the simulated wheel odometry alone."""
+        tasks = []
+        for run in simulated:
+            if run["scenario"] not in DEGENERATE or run["method"] != "adaptive":
+                continue
+            out = pathlib.Path(run["output"])
+            sequence = self.drive_folder(run["scenario"], run["sensor"], run["seed"])
+            config = self.root / "config" / SENSORS[run["sensor"]]
+            for baseline, extra in (
+                    ("constant-velocity", []),
+                    ("wheel", [sequence / "wheel_odom.csv", "--config", config,
+                               sequence / "sensors.yaml"])):
+                result = out.parent / f"{out.name}.baseline_{baseline}.json"
+                command = [self.bin / "evaluate_odometry", "--gt", sequence / "poses.txt",
+                           "--est", out / "poses_kitti.txt", "--times", sequence / "times.txt",
+                           "--json", result, "--baseline", baseline] + extra
+                tasks.append((f"baseline {baseline} {out.parent.name}",
+                              lambda c=command, r=result, k=run, b=baseline:
+                              (k, b, self.run_json(c, r))))
+        rows = []
+        for run, baseline, metrics in self.parallel(tasks):
+            rows.append({"scenario": run["scenario"], "sensor": run["sensor"],
+                         "seed": run["seed"], "baseline": baseline,
+                         "drift": metrics["baseline"]["drift"]})
+        return rows
+
     # -- real KITTI ------------------------------------------------------------------------
 
     def real_kitti(self):
@@ -386,6 +417,7 @@ def main():
                "foliage_density": args.foliage_density}
     try:
         results["simulated"] = runner.simulated_suite(args.quick)
+        results["dead_reckoning"] = runner.dead_reckoning(results["simulated"])
         results["real"] = runner.real_kitti()
         results["clustering"] = runner.clustering(args.quick)
         results["degeneration"] = runner.degeneration(args.quick)

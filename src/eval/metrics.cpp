@@ -1,8 +1,12 @@
 #include "adaptive_lego_loam/eval/metrics.h"
 
+#include "adaptive_lego_loam/core/common/rotations.h"
+#include "adaptive_lego_loam/core/motion_sensors/wheel_odometry.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -225,6 +229,31 @@ Poses constant_velocity_baseline(const Poses& ground_truth, std::size_t window_f
   Poses baseline{ground_truth.front()};
   while (baseline.size() < ground_truth.size())
     baseline.push_back(baseline.back() * step);
+  return baseline;
+}
+
+Poses wheel_baseline(const Poses& ground_truth, const std::vector<double>& times,
+                     const std::vector<WheelOdometrySample>& samples,
+                     const WheelOdometryParams& params) {
+  if (ground_truth.empty()) throw std::invalid_argument("empty ground truth");
+  if (times.size() < ground_truth.size()) {
+    throw std::invalid_argument("scan times (" + std::to_string(times.size()) +
+                                ") fewer than the ground truth's poses (" +
+                                std::to_string(ground_truth.size()) + ")");
+  }
+  std::deque<WheelOdometrySample> shifted(samples.begin(), samples.end());
+  for (WheelOdometrySample& sample : shifted)
+    sample.stamp += params.time_offset_s;
+  const Eigen::Isometry3d lidar_from_base =
+      pose_from_rpy_xyz(params.extrinsic_rpy_deg.data(), params.extrinsic_xyz_m.data());
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  Poses baseline{ground_truth.front()};
+  for (std::size_t i = 1; i < ground_truth.size(); ++i) {
+    if (const auto wheel = integrate_wheel(shifted, times[i - 1], times[i], params)) {
+      step = lidar_from_base * wheel->motion * lidar_from_base.inverse();
+    }
+    baseline.push_back(baseline.back() * step);
+  }
   return baseline;
 }
 

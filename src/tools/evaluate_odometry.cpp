@@ -12,6 +12,7 @@
 
 #include "adaptive_lego_loam/eval/metrics.h"
 #include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/motion_sensor_files.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 #include "tool_main.h"
 
@@ -34,16 +35,23 @@ struct Baseline {
 
 // The baselines --baseline knows; an unknown one is a usage error naming those it knows.
 constexpr const char* kConstantVelocity = "constant-velocity";
+constexpr const char* kWheel = "wheel";
 
-std::optional<std::string> check_baseline(const std::vector<std::string>& arguments) {
+std::optional<std::string> check_baseline(const std::vector<std::string>& arguments,
+                                          bool has_times) {
   if (arguments.empty()) return std::nullopt;
-  if (arguments[0] != kConstantVelocity) {
-    return "--baseline: unknown baseline '" + arguments[0] + "' (expected " + kConstantVelocity +
-           ")";
+  if (arguments[0] == kConstantVelocity) {
+    if (arguments.size() > 1)
+      return std::string("--baseline ") + kConstantVelocity + " takes no file";
+    return std::nullopt;
   }
-  if (arguments.size() > 1)
-    return std::string("--baseline ") + kConstantVelocity + " takes no file";
-  return std::nullopt;
+  if (arguments[0] == kWheel) {
+    if (arguments.size() != 2) return "--baseline wheel needs the wheel odometry's CSV file";
+    if (!has_times) return "--baseline wheel needs --times (the scans' stamps)";
+    return std::nullopt;
+  }
+  return "--baseline: unknown baseline '" + arguments[0] + "' (expected " + kConstantVelocity +
+         " or " + kWheel + " FILE)";
 }
 
 json drift_json(const EndDrift& drift) {
@@ -157,28 +165,37 @@ int main(int argc, char** argv) {
       "RMSE (m, after a rigid alignment). A shorter estimate (interrupted run) is compared over "
       "its frames."};
   std::string gt_path, estimate_path, calib_path, json_path, times_path;
-  std::vector<std::string> baseline_arguments;
+  std::vector<std::string> baseline_arguments, config_paths;
   app.add_option("--gt", gt_path, "ground-truth poses (KITTI format)")->required();
   app.add_option("--est", estimate_path, "estimated poses (KITTI format, lidar frame)")->required();
   app.add_option("--calib", calib_path,
                  "KITTI calib.txt: its Tr converts camera ground truth to the lidar frame");
   app.add_option("--json", json_path, "also write the numbers to this JSON file");
-  app.add_option("--baseline", baseline_arguments,
-                 "also the drift of a dead-reckoning baseline: constant-velocity (the ground "
-                 "truth's mean velocity over its first second, in the sensor frame, kept for the "
-                 "whole drive)")
+  app.add_option(
+         "--baseline", baseline_arguments,
+         "also the drift of a dead-reckoning baseline: constant-velocity (the ground "
+         "truth's mean velocity over its first second, in the sensor frame, kept for the "
+         "whole drive), or wheel FILE (the wheel odometry's CSV, run_sequence --wheel-odom's "
+         "format, integrated from the first true pose between the scans' --times)")
       ->expected(1, 2);
   app.add_option("--times", times_path,
-                 "scan times (KITTI times.txt) for the baseline's first second (default: 10 "
-                 "scans a second)");
+                 "scan times (KITTI times.txt): the constant-velocity baseline's first second "
+                 "(default: 10 scans a second), the wheel baseline's intervals");
+  app.add_option("--config", config_paths,
+                 "configs whose wheel_odometry section (extrinsic, time offset, max_gap_s) the "
+                 "wheel baseline uses, later ones overriding (as run_sequence --config)")
+      ->expected(1, -1);
   if (const auto status = tools::parse_command_line(app, argc, argv, "evaluate_odometry")) {
     return *status;
   }
-  if (const auto error = check_baseline(baseline_arguments)) {
+  if (const auto error = check_baseline(baseline_arguments, !times_path.empty())) {
     return tools::usage_error("evaluate_odometry", *error);
   }
   if (!times_path.empty() && baseline_arguments.empty()) {
     return tools::usage_error("evaluate_odometry", "--times applies to --baseline only");
+  }
+  if (!config_paths.empty() && (baseline_arguments.empty() || baseline_arguments[0] != kWheel)) {
+    return tools::usage_error("evaluate_odometry", "--config applies to --baseline wheel only");
   }
   return tools::run_job("evaluate_odometry", [&] {
     std::vector<Eigen::Isometry3d> ground_truth = read_kitti_poses(gt_path);
@@ -196,20 +213,34 @@ int main(int argc, char** argv) {
     std::optional<Baseline> baseline;
     std::size_t window = 10;  // 10 scans a second
     if (!baseline_arguments.empty()) {
-      if (!times_path.empty()) window = steps_within(read_kitti_times(times_path), 1.0);
+      const std::vector<double> times =
+          times_path.empty() ? std::vector<double>{} : read_kitti_times(times_path);
       const std::vector<Eigen::Isometry3d> truth_used(
           ground_truth.begin(),
           ground_truth.begin() + static_cast<std::ptrdiff_t>(evaluation.frames_used));
-      baseline =
-          Baseline{baseline_arguments[0], constant_velocity_baseline(truth_used, window), {}};
+      baseline = Baseline{baseline_arguments[0], {}, {}};
+      if (baseline_arguments[0] == kWheel) {
+        const WheelOdometryParams params =
+            config_paths.empty() ? WheelOdometryParams{} : load_config(config_paths).wheel_odometry;
+        if (times.size() < truth_used.size()) {
+          throw IoError(times_path + ": " + std::to_string(times.size()) +
+                        " scan times, expected one for each of the " +
+                        std::to_string(truth_used.size()) + " poses");
+        }
+        baseline->poses = wheel_baseline(truth_used, times,
+                                         read_wheel_odometry_csv(baseline_arguments[1]), params);
+      } else {
+        if (!times.empty()) window = steps_within(times, 1.0);
+        baseline->poses = constant_velocity_baseline(truth_used, window);
+      }
       baseline->drift = end_drift(baseline->poses, truth_used);
     }
     if (!json_path.empty()) {
       json document = to_json(evaluation);
       if (baseline) {
-        document["baseline"] = {{"name", baseline->name},
-                                {"first_second_steps", window},
-                                {"drift", drift_json(baseline->drift)}};
+        document["baseline"] = {{"name", baseline->name}, {"drift", drift_json(baseline->drift)}};
+        if (baseline->name == kConstantVelocity)
+          document["baseline"]["first_second_steps"] = window;
       }
       write_json(json_path, document);
     }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "adaptive_lego_loam/core/common/rotations.h"
 #include "adaptive_lego_loam/eval/metrics.h"
 #include "adaptive_lego_loam/io/pose_files.h"
 
@@ -265,6 +266,72 @@ TEST(Metrics, TheConstantVelocityBaselineKeepsTheFirstSecondsMotion) {
   EXPECT_NEAR(constant_velocity_baseline(truth, 1000).back().translation().x(),
               truth.back().translation().x(), 1e-9);
   EXPECT_EQ(constant_velocity_baseline(Poses{Eigen::Isometry3d::Identity()}, 10).size(), 1u);
+}
+
+namespace {
+
+// Wheel odometry at 50 Hz reporting `speed` m/s forward and `yaw_rate` rad/s from -0.1 s to `end`.
+std::vector<WheelOdometrySample> wheel_samples(double speed, double yaw_rate, double end) {
+  std::vector<WheelOdometrySample> samples;
+  for (int i = 0; - 0.1 + 0.02 * i <= end + 1e-9; ++i) {
+    WheelOdometrySample sample;
+    sample.stamp = -0.1 + 0.02 * i;
+    sample.linear_velocity.x() = speed;
+    sample.angular_velocity.z() = yaw_rate;
+    samples.push_back(sample);
+  }
+  return samples;
+}
+
+// The base frame's pose after `t` s at a constant forward speed and yaw rate (an exact arc).
+Eigen::Isometry3d arc(double speed, double yaw_rate, double t) {
+  const double yaw = yaw_rate * t;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  pose.translation() << speed / yaw_rate * std::sin(yaw), speed / yaw_rate * (1 - std::cos(yaw)), 0;
+  return pose;
+}
+
+}  // namespace
+
+TEST(Metrics, TheWheelBaselineIsTheOdometryAloneScaleErrorIncluded) {
+  // 10 m/s down a straight road, the odometry 2 % long: the baseline overshoots by 2 %.
+  std::vector<double> times;
+  for (int i = 0; i <= 100; ++i)
+    times.push_back(0.1 * i);
+  const Poses straight = integrate(repeated(motion(1.0), 100));
+  const Poses long_by_2 =
+      wheel_baseline(straight, times, wheel_samples(10.2, 0.0, 10.0), WheelOdometryParams{});
+  ASSERT_EQ(long_by_2.size(), straight.size());
+  EXPECT_NEAR(*end_drift(long_by_2, straight).reach_ratio, 1.02, 1e-9);
+  // The samples stop after 5 s: the last motion is kept to the end.
+  const Poses coasting =
+      wheel_baseline(straight, times, wheel_samples(10.0, 0.0, 5.0), WheelOdometryParams{});
+  EXPECT_NEAR(coasting.back().translation().x(), 100.0, 1e-6);
+  EXPECT_THROW(
+      wheel_baseline(straight, {0.0, 0.1}, wheel_samples(10.0, 0.0, 5.0), WheelOdometryParams{}),
+      std::invalid_argument);
+}
+
+TEST(Metrics, TheWheelBaselineMovesTheBasesMotionToTheSensor) {
+  // A base turning on a 50 m circle, the LiDAR 1 m behind it and turned 90 deg: the baseline
+  // follows the LiDAR's circle only with the extrinsic (to the sampling's first-order error).
+  WheelOdometryParams params;
+  params.extrinsic_rpy_deg = {0, 0, -90};  // the base's axes in the LiDAR frame
+  params.extrinsic_xyz_m = {0, -1, 0};     // the base 1 m ahead, along the LiDAR's -y
+  const Eigen::Isometry3d lidar_from_base =
+      pose_from_rpy_xyz(params.extrinsic_rpy_deg.data(), params.extrinsic_xyz_m.data());
+  std::vector<double> times;
+  Poses truth;
+  for (int i = 0; i <= 100; ++i) {
+    times.push_back(0.1 * i);
+    truth.push_back(arc(10.0, 0.2, 0.1 * i) * lidar_from_base.inverse());
+  }
+  const Poses with = wheel_baseline(truth, times, wheel_samples(10.0, 0.2, 10.0), params);
+  EXPECT_LT((with.back().translation() - truth.back().translation()).norm(), 0.5);
+  const Poses without =
+      wheel_baseline(truth, times, wheel_samples(10.0, 0.2, 10.0), WheelOdometryParams{});
+  EXPECT_GT((without.back().translation() - truth.back().translation()).norm(), 50.0);
 }
 
 TEST(Metrics, StepsWithinTheFirstSecond) {

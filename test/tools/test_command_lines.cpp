@@ -93,12 +93,22 @@ TEST(CommandLines, LidarSimMotionSensorOptionsAreChecked) {
 TEST(CommandLines, AnUnknownBaselineIsAUsageErrorNamingTheKnownOnes) {
   const std::string poses = std::string(TEST_DATA_DIR) + "/kitti_seq07/poses.txt";
   const std::string evaluate = tool("evaluate_odometry") + " --gt " + poses + " --est " + poses;
-  for (const char* baseline : {"wheel odometry.csv", "constant-velocity extra.csv"}) {
+  for (const char* baseline : {"imu imu.csv", "constant-velocity extra.csv"}) {
     const auto [status, output] = stderr_of(evaluate + " --baseline " + std::string(baseline));
     EXPECT_EQ(status, 2) << baseline << ": " << output;
     EXPECT_EQ(lines_of(output), 1) << output;
     EXPECT_NE(output.find("constant-velocity"), std::string::npos) << output;
   }
+  // The wheel baseline needs the scans' stamps, and its file must be there.
+  const std::string times = std::string(TEST_DATA_DIR) + "/kitti_seq07/times.txt";
+  const auto [no_times, no_times_output] = stderr_of(evaluate + " --baseline wheel odom.csv");
+  EXPECT_EQ(no_times, 2) << no_times_output;
+  EXPECT_NE(no_times_output.find("--times"), std::string::npos) << no_times_output;
+  const auto [missing, missing_output] =
+      stderr_of(evaluate + " --baseline wheel /nonexistent/odom.csv --times " + times);
+  EXPECT_EQ(missing, 1) << missing_output;
+  EXPECT_EQ(lines_of(missing_output), 1) << missing_output;
+  EXPECT_NE(missing_output.find("/nonexistent/odom.csv"), std::string::npos) << missing_output;
   const auto [status, output] = run_command(evaluate + " --baseline constant-velocity");
   EXPECT_EQ(status, 0) << output;
   EXPECT_NE(output.find("reach ratio"), std::string::npos) << output;

@@ -13,6 +13,9 @@
 #include <optional>
 #include <vector>
 
+#include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/motion_sensors/samples.h"
+
 namespace adaptive_lego_loam {
 
 // E_i = (Q_i^-1 Q_{i+1})^-1 (P_i^-1 P_{i+1}) for each consecutive pair.
@@ -98,6 +101,15 @@ EndDrift end_drift(const std::vector<Eigen::Isometry3d>& estimate,
 // than the window, over those there are.
 std::vector<Eigen::Isometry3d> constant_velocity_baseline(
     const std::vector<Eigen::Isometry3d>& ground_truth, std::size_t window_frames);
+
+// Dead reckoning on the wheel odometry alone from the first true pose: between consecutive scan
+// `times` the base frame's motion as the odometry reports it (scale and slips uncorrected,
+// core's integrate_wheel), moved to the sensor frame by the config's extrinsic; across a gap in
+// the samples the last motion is kept. What the wheels alone get. Needs a time per pose.
+std::vector<Eigen::Isometry3d> wheel_baseline(const std::vector<Eigen::Isometry3d>& ground_truth,
+                                              const std::vector<double>& times,
+                                              const std::vector<WheelOdometrySample>& samples,
+                                              const WheelOdometryParams& params);
 
 // How many steps the first `seconds` of scan times (increasing) span: the largest k with
 // times[k] - times[0] <= seconds.
