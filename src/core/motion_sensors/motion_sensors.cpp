@@ -30,10 +30,12 @@ constexpr double kSideSpeedShare = 0.02;  // of the speed
 // A wheel velocity further than this from the filter's (RMS sigmas) is slip; slips last about a
 // second, and no scale is learned within one of one.
 constexpr double kWheelGate = 5.0;
+// The odometry's yaw rate is off by its track width's error besides its noise (a share of it).
+constexpr double kYawRateShare = 0.05;
 constexpr double kLongestSlip = 2.0;  // s
 constexpr double kSlipQuiet = 1.0;    // s
-// Without an IMU: the speed a vehicle can change by in a scan interval before the wheel is
-// taken to slip (m/s per s), beyond three of the odometry's sigmas.
+// Without an IMU: how fast a vehicle's speed can change (m/s per s) since the last speed known
+// before the wheel is taken to slip, beyond three of the odometry's sigmas.
 constexpr double kMaxAcceleration = 5.0;
 // The LiDAR's forward distance teaches the wheel its scale only when known this well; it is never
 // taken to know it better than the floor.
@@ -180,9 +182,19 @@ void MotionSensors::apply_wheel(const WheelOdometrySample& wheel, const Eigen::V
   // The base turns with the body about its vertical only: roll and pitch are the body's own.
   const Eigen::Vector3d base_up = imu_from_base.linear().col(2);
   const Eigen::Matrix3d yaw_only = base_up * base_up.transpose();
-  if (!filter_.update_point_velocity(measured, information.asDiagonal(),
-                                     imu_from_base.translation(), imu_from_base.linear(), gyro,
-                                     yaw_only, kWheelGate)) {
+  // One wheel spinning or locked shows first in the yaw rate the odometry reports, against the
+  // gyro's: a slip, whatever the forward speed says.
+  const double body_yaw_rate = base_up.dot(gyro - filter_.state().gyro_bias);
+  const double yaw_rate_sigma =
+      std::sqrt(wheel.angular_z_variance > 0.0
+                    ? wheel.angular_z_variance
+                    : std::pow(wheel_params_.yaw_rate_sigma_deg * M_PI / 180.0, 2)) +
+      kYawRateShare * std::fabs(body_yaw_rate);
+  const bool yaw_agrees =
+      std::fabs(wheel.angular_velocity.z() - body_yaw_rate) <= kWheelGate * yaw_rate_sigma;
+  if (!yaw_agrees || !filter_.update_point_velocity(
+                         measured, information.asDiagonal(), imu_from_base.translation(),
+                         imu_from_base.linear(), gyro, yaw_only, kWheelGate)) {
     ++status_.wheel_slips;
     if (!refused_since_) refused_since_ = wheel.stamp;
     last_refusal_ = wheel.stamp;
@@ -266,9 +278,11 @@ void MotionSensors::predict_with_wheel(double stamp) {
   if (!wheel_motion_) return;
   const double dt = stamp - *previous_stamp_;
   const double speed = wheel_scale_.scale() * wheel_motion_->distance / dt;
-  if (lidar_speed_ && dt > 0.0) {
+  if (reference_speed_ && dt > 0.0) {
+    // Since the last speed known, the vehicle may have sped up or braked at most so much.
+    const double since = stamp - reference_speed_->stamp;
     const double sigma = std::sqrt(wheel_motion_->distance_variance) / dt;
-    if (std::fabs(speed - *lidar_speed_) > kMaxAcceleration * dt + 3.0 * sigma) {
+    if (std::fabs(speed - reference_speed_->speed) > kMaxAcceleration * since + 3.0 * sigma) {
       ++status_.wheel_slips;
       wheel_motion_.reset();
       return;
@@ -317,11 +331,15 @@ void MotionSensors::update(const std::optional<Eigen::Isometry3d>& mapped_motion
     if (wheel_motion_ && motions_in_a_row_ > kStartAfterMotions && !prior_held && !after_slip) {
       learn_wheel_scale(*lidar_motion, information);
     }
-    const Eigen::Isometry3d base_motion =
-        lidar_from_base_.inverse() * *lidar_motion * lidar_from_base_;
-    lidar_speed_ = base_motion.translation().x() / dt;
-  } else {
-    lidar_speed_.reset();
+    // The speed is known where the LiDAR measured the forward distance, or the wheel odometry
+    // held it. Where neither did (a tunnel, the wheel refused) the mapped motion along the road
+    // is the scene's false information: kept, the last known speed ages instead.
+    if ((prior_held && wheel_motion_) ||
+        forward_variance(information) < kScaleTeacherSigma * kScaleTeacherSigma) {
+      const Eigen::Isometry3d base_motion =
+          lidar_from_base_.inverse() * *lidar_motion * lidar_from_base_;
+      reference_speed_ = TimedSpeed{stamp_, base_motion.translation().x() / dt};
+    }
   }
   status_.gyro_bias = filter_.state().gyro_bias;
   status_.accel_bias = filter_.state().accel_bias;
@@ -367,13 +385,15 @@ void MotionSensors::start_filter(const Eigen::Isometry3d& lidar_motion) {
   last_wheel_stamp_ = std::max(last_wheel_stamp_, stamp_);
 }
 
-void MotionSensors::learn_wheel_scale(const Eigen::Isometry3d& lidar_motion,
-                                      const Matrix6d& information) {
-  // The LiDAR's forward distance of the base and how well it is known: the marginal variance
-  // of that component.
+double MotionSensors::forward_variance(const Matrix6d& information) const {
   const Matrix6d to_lidar = adjoint(lidar_from_base_);
   const Matrix6d base_information = to_lidar.transpose() * information * to_lidar;
-  const double variance = symmetric_inverse(base_information)(3, 3);
+  return symmetric_inverse(base_information)(3, 3);
+}
+
+void MotionSensors::learn_wheel_scale(const Eigen::Isometry3d& lidar_motion,
+                                      const Matrix6d& information) {
+  const double variance = forward_variance(information);
   if (!(variance < kScaleTeacherSigma * kScaleTeacherSigma)) return;
   const Eigen::Isometry3d base_motion =
       lidar_from_base_.inverse() * lidar_motion * lidar_from_base_;

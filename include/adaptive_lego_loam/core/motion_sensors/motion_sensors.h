@@ -81,6 +81,8 @@ class MotionSensors {
   void predict_with_wheel(double stamp);
   void start_filter(const Eigen::Isometry3d& lidar_motion);
   void learn_wheel_scale(const Eigen::Isometry3d& lidar_motion, const Matrix6d& information);
+  // The marginal variance of the base's forward distance the information gives (m^2).
+  double forward_variance(const Matrix6d& information) const;
   void drop_old_samples(double before);
 
   ImuParams imu_params_;
@@ -101,7 +103,11 @@ class MotionSensors {
   std::optional<double> previous_stamp_;  // the last scan's
   std::optional<double> interval_start_;  // the scan before the current one's
   double stamp_ = 0.0;
-  std::optional<double> lidar_speed_;        // the base's forward speed the LiDAR measured last
+  struct TimedSpeed {
+    double stamp;
+    double speed;  // the base's forward speed, m/s
+  };
+  std::optional<TimedSpeed> reference_speed_;  // the last one known (without an IMU: slips)
   int motions_in_a_row_ = 0;                 // mapped motions (update()) since a scan went unmapped
   int refusals_in_a_row_ = 0;                // LiDAR motions the filter's gate refused
   std::optional<double> refused_since_;      // wheel samples refused in a row since
