@@ -53,7 +53,7 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
       save_on_exit_(private_nh.param<std::string>("save_map_on_exit", "")),
       uses_prior_(config.mapping.weak_direction_prior > 0.0),
       uses_motion_sensors_(private_nh.param("motion_sensors", false)),
-      uses_degeneration_(uses_prior_ || uses_motion_sensors_),
+      uses_degeneration_(true),
       degeneration_slot_(kOdometry + 1),
       priors_slot_(kOdometry + 1 + uses_degeneration_),
       frames_(ros_bridge::load_frame_names(private_nh)),
@@ -324,6 +324,10 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
   map_header.stamp = stamp;
   map_header.frame_id = frames_.map;
   nav_msgs::Odometry mapped = ros_bridge::odometry_to_ros(out_.pose, map_header, sensor_frame_);
+  ros_bridge::set_pose_covariance(
+      covariance_from_information(out_.match.matched ? pose_information(out_.match, scene_)
+                                                     : Matrix6d::Zero()),
+      mapped.pose);
   // The mapped motion, without the map frame's jumps: feature_association's motion model.
   if (out_.motion && last_stamp_ && stamp > *last_stamp_) {
     mapped.twist.twist = ros_bridge::motion_to_twist(*out_.motion, (stamp - *last_stamp_).toSec());

@@ -86,7 +86,9 @@ class MapOptimizationNode {
   MappingOutput out_;
   bool uses_prior_;
   bool uses_motion_sensors_;  // ~motion_sensors: feature_association sends /motion_priors
-  bool uses_degeneration_;    // the weak-direction prior or the motion sensors weigh /degeneration
+  // The scene's weak direction and mu weigh the weak-direction prior, the motion sensors' priors
+  // and the pose's covariance: /degeneration is paired with every scan.
+  bool uses_degeneration_;
   std::optional<SceneDegeneration> scene_;  // the scan being mapped's, from /degeneration
   std::size_t degeneration_slot_, priors_slot_;
   ros_bridge::FrameNames frames_;

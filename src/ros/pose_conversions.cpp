@@ -18,6 +18,23 @@ nav_msgs::Odometry odometry_to_ros(const Eigen::Isometry3d& pose, const std_msgs
   return msg;
 }
 
+void set_pose_covariance(const Eigen::Matrix<double, 6, 6>& covariance,
+                         geometry_msgs::PoseWithCovariance& pose) {
+  const Eigen::Quaterniond q = Eigen::Quaterniond(pose.pose.orientation.w, pose.pose.orientation.x,
+                                                  pose.pose.orientation.y, pose.pose.orientation.z)
+                                   .normalized();
+  const Eigen::Matrix3d rotation = q.toRotationMatrix();
+  // Parent-frame [translation, rotation] from child-frame [rotation, translation].
+  Eigen::Matrix<double, 6, 6> to_parent = Eigen::Matrix<double, 6, 6>::Zero();
+  to_parent.topRightCorner<3, 3>() = rotation;
+  to_parent.bottomLeftCorner<3, 3>() = rotation;
+  const Eigen::Matrix<double, 6, 6> parent = to_parent * covariance * to_parent.transpose();
+  for (int row = 0; row < 6; ++row) {
+    for (int col = 0; col < 6; ++col)
+      pose.covariance[6 * row + col] = parent(row, col);
+  }
+}
+
 Eigen::Isometry3d pose_from_ros(const geometry_msgs::Pose& pose, const std::string& source) {
   const geometry_msgs::Point& t = pose.position;
   const geometry_msgs::Quaternion& q = pose.orientation;

@@ -181,7 +181,8 @@ class Outputs {
                               "normals,valid,map_degenerate_directions,euclidean_points,"
                               "fragment_smoothness,structure_share,every_cluster_kept,"
                               "map_weak_sigma_m,map_weak_x,map_weak_y,map_weak_z,"
-                              "map_rotation_sigma_deg\n";
+                              "map_rotation_sigma_deg,estimate_weak_sigma_m,estimate_weak_x,"
+                              "estimate_weak_y,estimate_weak_z,motion_prior\n";
     localization_.stream() << "frame,state,match_ratio,alignment,inlier_ratio,inlier_mse\n";
   }
 
@@ -253,7 +254,15 @@ class Outputs {
     degeneration_.stream() << "," << seen.weakest_sigma() << "," << seen.weakest_direction().x()
                            << "," << seen.weakest_direction().y() << ","
                            << seen.weakest_direction().z() << ","
-                           << seen.rotation_sigma(0) * 180.0 / M_PI << "\n";
+                           << seen.rotation_sigma(0) * 180.0 / M_PI;
+    // The estimate's: the correspondences' along the scene's weak direction as much as the scene
+    // constrains it, and what the motion sensors' priors held.
+    const Observability known =
+        observability(pose_information(frame.mapping, scene_degeneration(filtered)));
+    degeneration_.stream() << "," << known.weakest_sigma() << "," << known.weakest_direction().x()
+                           << "," << known.weakest_direction().y() << ","
+                           << known.weakest_direction().z() << ","
+                           << int(frame.mapping.motion_prior) << "\n";
     stamps.push_back(frame.stamp);
     for (const auto& [stage, ms] : frame.times.entries())
       stage_ms[stage].push_back(ms);

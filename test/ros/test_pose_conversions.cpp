@@ -43,6 +43,22 @@ TEST(PoseConversions, OdometryRoundTripAndFrames) {
   EXPECT_TRUE(back.isApprox(sample_pose(), 1e-14));
 }
 
+TEST(PoseConversions, CovarianceIsInTheParentsAxesTranslationFirst) {
+  // The sensor turned 90 deg left: its own x is the map's y. Unsure 2 m along its x (a tunnel's
+  // axis), 1 deg about its z.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).matrix();
+  nav_msgs::Odometry msg = odometry_to_ros(pose, header_at(5.0, "map"), "velodyne");
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Identity() * 1e-6;
+  covariance(3, 3) = 4.0;                              // the sensor's x
+  covariance(2, 2) = std::pow(1.0 * M_PI / 180.0, 2);  // about the sensor's z
+  set_pose_covariance(covariance, msg.pose);
+  EXPECT_NEAR(msg.pose.covariance[6 * 1 + 1], 4.0, 1e-12);   // the map's y
+  EXPECT_NEAR(msg.pose.covariance[6 * 0 + 0], 1e-6, 1e-12);  // the map's x
+  EXPECT_NEAR(msg.pose.covariance[6 * 5 + 5], covariance(2, 2), 1e-12);
+  EXPECT_NEAR(msg.pose.covariance[6 * 3 + 3], 1e-6, 1e-12);
+}
+
 TEST(PoseConversions, BadPosesAreRejectedNamingTheTopic) {
   geometry_msgs::Pose pose;  // zero quaternion
   EXPECT_THROW(pose_from_ros(pose, "/laser_odom_to_init"), IoError);

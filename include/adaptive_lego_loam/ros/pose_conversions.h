@@ -19,6 +19,12 @@ namespace adaptive_lego_loam::ros_bridge {
 nav_msgs::Odometry odometry_to_ros(const Eigen::Isometry3d& pose, const std_msgs::Header& header,
                                    const std::string& child_frame);
 
+// A covariance of `pose` over right perturbations ([rotation vector, translation] in the child
+// frame, the core's) as nav_msgs/Odometry's pose covariance: [x, y, z, rotation about x, y, z]
+// in the parent frame's axes, row-major.
+void set_pose_covariance(const Eigen::Matrix<double, 6, 6>& covariance,
+                         geometry_msgs::PoseWithCovariance& pose);
+
 // Throws IoError naming `source` on a non-finite number or a zero quaternion; the quaternion is
 // normalised.
 Eigen::Isometry3d pose_from_ros(const geometry_msgs::Pose& pose, const std::string& source);

@@ -313,6 +313,9 @@ struct SteppedMapMatch::State {
   void make_motion_cost();
   void add_sensor_priors(ceres::Problem& problem, double* q, double* t);
   Eigen::Matrix<double, 6, 6> sensor_prior_normal_matrix() const;
+  // The priors' normal matrix about a right perturbation of the pose (sensor frame), in the
+  // residuals' units (residual_sigma^2 times their information).
+  Matrix6d sensor_prior_body_normal() const;
 
   MappingParams params;
   const LocalMap& map;
@@ -385,8 +388,20 @@ void SteppedMapMatch::State::add_sensor_priors(ceres::Problem& problem, double* 
   if (gravity_cost) problem.AddResidualBlock(gravity_cost.get(), nullptr, q);
 }
 
-Eigen::Matrix<double, 6, 6> SteppedMapMatch::State::sensor_prior_normal_matrix() const {
+Matrix6d SteppedMapMatch::State::sensor_prior_body_normal() const {
   const double sigma = params.residual_sigma;
+  Matrix6d body = Matrix6d::Zero();
+  if (motion_cost) body += sigma * sigma * motion_information;
+  if (gravity_cost) {
+    const Eigen::Matrix3d r = rotation.toRotationMatrix();
+    const Eigen::Vector3d seen = r.transpose() * (map.to_placement().linear() * sensors.map_up);
+    const Eigen::Matrix3d j = gravity_root * skew(seen);
+    body.topLeftCorner<3, 3>() += j.transpose() * j;
+  }
+  return body;
+}
+
+Eigen::Matrix<double, 6, 6> SteppedMapMatch::State::sensor_prior_normal_matrix() const {
   // At the pose of the first iteration: body perturbations [phi, rho] from the solver's tangent
   // [delta, dt] (Ceres' quaternion: R' = exp(2 delta) R, t' = t + dt): phi = 2 R^T delta,
   // rho = R^T dt.
@@ -394,14 +409,7 @@ Eigen::Matrix<double, 6, 6> SteppedMapMatch::State::sensor_prior_normal_matrix()
   Matrix6d to_body = Matrix6d::Zero();
   to_body.topLeftCorner<3, 3>() = 2.0 * r.transpose();
   to_body.bottomRightCorner<3, 3>() = r.transpose();
-  Matrix6d body = Matrix6d::Zero();
-  if (motion_cost) body += sigma * sigma * motion_information;
-  if (gravity_cost) {
-    const Eigen::Vector3d seen = r.transpose() * (map.to_placement().linear() * sensors.map_up);
-    const Eigen::Matrix3d j = gravity_root * skew(seen);
-    body.topLeftCorner<3, 3>() += j.transpose() * j;
-  }
-  return to_body.transpose() * body * to_body;
+  return to_body.transpose() * sensor_prior_body_normal() * to_body;
 }
 
 void SteppedMapMatch::State::find_degenerate_directions(ceres::Problem& problem, double* q,
@@ -527,6 +535,8 @@ MapMatchResult SteppedMapMatch::result() const {
     result.pose = state.map.to_placement().inverse() * placed_pose;
     result.information = correspondence_information(
         state.matches, placed_pose, state.params.huber_loss, state.params.residual_sigma);
+    result.prior_information =
+        state.sensor_prior_body_normal() / std::pow(state.params.residual_sigma, 2);
   }
   return result;
 }

@@ -43,4 +43,16 @@ Eigen::Matrix<double, 6, 6> discounted_along(const Eigen::Matrix<double, 6, 6>& 
   return scale * information * scale;
 }
 
+Eigen::Matrix<double, 6, 6> covariance_from_information(
+    const Eigen::Matrix<double, 6, 6>& information, double unknown_variance) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(
+      0.5 * (information + information.transpose()));
+  Eigen::Matrix<double, 6, 1> variances;
+  for (int k = 0; k < 6; ++k) {
+    const double value = solver.eigenvalues()(k);
+    variances(k) = value * unknown_variance > 1.0 ? 1.0 / value : unknown_variance;
+  }
+  return solver.eigenvectors() * variances.asDiagonal() * solver.eigenvectors().transpose();
+}
+
 }  // namespace adaptive_lego_loam

@@ -34,6 +34,11 @@ Matrix6d sensor_feedback_information(const MapMatchResult& match,
   return discounted_along(match.information, scene->weak_direction, 1.0 - scene->mu);
 }
 
+Matrix6d pose_information(const MapMatchResult& match,
+                          const std::optional<SceneDegeneration>& scene) {
+  return sensor_feedback_information(match, scene) + match.prior_information;
+}
+
 Pipeline::Pipeline(const Config& config)
     : config_(config),
       filter_(config),

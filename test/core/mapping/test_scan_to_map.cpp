@@ -231,6 +231,11 @@ TEST(ScanToMap, APriorHoldsTheDirectionTheSceneLeavesOpenAndOnlyThat) {
   EXPECT_NEAR(held.pose.translation().y(), 0.1, 0.01);
   // The LiDAR's own information is the same: the prior is not counted as the scene's.
   EXPECT_GT(observability(held.information).weakest_sigma(), 1.0);
+  // The prior's is counted apart, on the open direction only: with it the estimate knows x.
+  EXPECT_TRUE(alone.prior_information.isZero());
+  EXPECT_GT(held.prior_information(3, 3), 0.9e6);
+  EXPECT_LT(held.prior_information(4, 4), 0.01 * held.prior_information(3, 3));
+  EXPECT_LT(observability(held.information + held.prior_information).weakest_sigma(), 0.01);
 
   // A prior that is wrong where the scene sees (0.3 m off in y) does not move the match there.
   Eigen::Isometry3d wrong = truth;

@@ -41,3 +41,22 @@ TEST(Observability, CorrespondenceInformationIsTheJacobiansOverTheNoise) {
   // A turn about z moves the point (2, 0, 0) along y: no residual for a plane facing x.
   EXPECT_NEAR(information(2, 2), 0.0, 1e-12);
 }
+
+TEST(Observability, CovarianceInvertsTheInformationAndCapsWhatItLeavesOpen) {
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  information.diagonal() << 1e6, 1e6, 1e6, 0.0, 1e4, 1e-6;  // x open, z nearly
+  const Eigen::Matrix<double, 6, 6> covariance = covariance_from_information(information, 100.0);
+  EXPECT_NEAR(covariance(0, 0), 1e-6, 1e-12);
+  EXPECT_NEAR(covariance(4, 4), 1e-4, 1e-10);
+  EXPECT_DOUBLE_EQ(covariance(3, 3), 100.0);
+  EXPECT_DOUBLE_EQ(covariance(5, 5), 100.0);
+  EXPECT_TRUE(covariance.allFinite());
+  // A direction off the axes: its variance along it, none across.
+  const Eigen::Vector3d along = Eigen::Vector3d(1.0, 1.0, 0.0).normalized();
+  Eigen::Matrix<double, 6, 6> diagonal_road = Eigen::Matrix<double, 6, 6>::Identity() * 1e4;
+  diagonal_road.bottomRightCorner<3, 3>() -= 1e4 * along * along.transpose();
+  const Eigen::Matrix<double, 6, 6> open = covariance_from_information(diagonal_road, 100.0);
+  EXPECT_NEAR(along.dot(open.bottomRightCorner<3, 3>() * along), 100.0, 1e-6);
+  const Eigen::Vector3d across(-along.y(), along.x(), 0.0);
+  EXPECT_NEAR(across.dot(open.bottomRightCorner<3, 3>() * across), 1e-4, 1e-9);
+}

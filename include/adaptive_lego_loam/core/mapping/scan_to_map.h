@@ -29,6 +29,9 @@ struct MapMatchResult {
   // correspondences at the result, with MappingParams::residual_sigma. Zero when not matched.
   Matrix6d information = Matrix6d::Zero();
   bool motion_prior = false;  // the motion sensors' motion prior took part
+  // What the motion sensors' priors added (the motion prior on the directions it held, gravity
+  // on roll and pitch), in the units and frame of `information`.
+  Matrix6d prior_information = Matrix6d::Zero();
   // How well the first iteration's correspondences fixed each direction (with residual_sigma),
   // when the motion sensors' prior was offered: it holds the directions they leave open.
   std::optional<Observability> lidar_observability;

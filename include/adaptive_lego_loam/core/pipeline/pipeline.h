@@ -47,6 +47,10 @@ std::optional<SceneDegeneration> scene_degeneration(const Degeneration& degenera
 // scene's weak direction only in the share the scene constrains it (1 - mu).
 Matrix6d sensor_feedback_information(const MapMatchResult& match,
                                      const std::optional<SceneDegeneration>& scene);
+// How well the mapped pose is known (right perturbation [rotation, translation], sensor frame):
+// the correspondences' information as the motion sensors learn from it, and the priors'.
+Matrix6d pose_information(const MapMatchResult& match,
+                          const std::optional<SceneDegeneration>& scene);
 // The same from the filter's degeneration and its (smoothed) mu, e.g. as a message carries them.
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
                                                        const Degeneration& degeneration, double mu);
