@@ -167,8 +167,8 @@ void FeatureAssociationNode::on_map_match(const MapMatchConstPtr& msg) {
   try {
     const ros_bridge::MappingFeedback feedback =
         ros_bridge::mapping_feedback_from_ros(*msg, map_match_sub_.getTopic());
-    relay_->add_feedback(msg->header.stamp.toSec(), feedback.matched_motion(),
-                         feedback.information);
+    relay_->add_feedback(msg->header.stamp.toSec(), feedback.matched_motion(), feedback.information,
+                         feedback.motion_prior);
     if (takes_mapped_motion_ && feedback.motion && previous && msg->header.stamp > *previous) {
       const double gap = (msg->header.stamp - *previous).toSec();
       const double period = config_.sensor.scan_period;

@@ -88,12 +88,14 @@ MapMatch map_match_to_ros(const MapMatchResult& match,
   }
   set_matrix(msg.information, match.information);
   msg.degenerate_directions = match.degenerate_directions;
+  msg.motion_prior = match.motion_prior;
   return msg;
 }
 
 MappingFeedback mapping_feedback_from_ros(const MapMatch& msg, const std::string& source) {
   MappingFeedback feedback;
   feedback.matched = msg.matched;
+  feedback.motion_prior = msg.motion_prior;
   feedback.information = matrix_of<6>(msg.information, source, "information");
   if (msg.has_motion) feedback.motion = pose_from_ros(msg.motion, source);
   return feedback;

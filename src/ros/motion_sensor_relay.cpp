@@ -64,12 +64,12 @@ void MotionSensorRelay::add_wheel(const WheelOdometrySample& sample, double now_
 }
 
 void MotionSensorRelay::add_feedback(double stamp, const std::optional<Eigen::Isometry3d>& motion,
-                                     const Matrix6d& information) {
+                                     const Matrix6d& information, bool prior_held) {
   if (!awaiting_feedback_ || *awaiting_feedback_ != stamp) {
     ++late_feedback_;
     return;
   }
-  sensors_->update(motion, information);
+  sensors_->update(motion, information, prior_held);
   awaiting_feedback_.reset();
 }
 

@@ -101,9 +101,12 @@ TEST(MotionPriorConversions, TheMappingsFeedbackTeachesTheSensorsOnlyWhenMatched
   match.matched = true;
   match.information = an_information();
   match.degenerate_directions = 2;
+  match.motion_prior = true;
   const MapMatch msg = map_match_to_ros(match, a_motion(), scan_header());
   EXPECT_EQ(msg.degenerate_directions, 2);
   const MappingFeedback feedback = mapping_feedback_from_ros(msg, "map_match");
+  // Whether the prior held a direction: the wheel's scale learns only from scans it did not.
+  EXPECT_TRUE(feedback.motion_prior);
   ASSERT_TRUE(feedback.matched_motion());
   EXPECT_TRUE(feedback.matched_motion()->isApprox(a_motion(), 1e-12));
   EXPECT_EQ(feedback.information, an_information());

@@ -32,6 +32,7 @@ struct MappingFeedback {
   std::optional<Eigen::Isometry3d> motion;  // MappingOutput::motion (none on the first scan)
   bool matched = false;
   Matrix6d information = Matrix6d::Zero();  // MapMatchResult::information
+  bool motion_prior = false;                // MapMatchResult::motion_prior
   // MotionSensors::update's motion: only of a matched scan, as the offline pipeline hands it.
   std::optional<Eigen::Isometry3d> matched_motion() const {
     return matched ? motion : std::nullopt;

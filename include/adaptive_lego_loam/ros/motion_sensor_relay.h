@@ -62,11 +62,12 @@ class MotionSensorRelay {
   // back (a bag played again): that input's queue starts over.
   void add_imu(const ImuSample& sample, double now_s);
   void add_wheel(const WheelOdometrySample& sample, double now_s);
-  // The mapping's result for the scan at `stamp`: its mapped motion when it was matched, and the
-  // information the LiDAR's correspondences had of it. Used when it is the last predicted scan's;
-  // a late one (a newer scan was predicted without it) is ignored.
+  // The mapping's result for the scan at `stamp`: its mapped motion when it was matched, the
+  // information the LiDAR's correspondences had of it, and whether the motion prior held a
+  // direction (MotionSensors::update's). Used when it is the last predicted scan's; a late one (a
+  // newer scan was predicted without it) is ignored.
   void add_feedback(double stamp, const std::optional<Eigen::Isometry3d>& motion,
-                    const Matrix6d& information);
+                    const Matrix6d& information, bool prior_held = false);
 
   // Whether the scan at `stamp`, complete since `waiting_since_s`, may be processed at `now_s`.
   ScanRelease release(double stamp, double waiting_since_s, double now_s) const;
