@@ -3,6 +3,7 @@
 
 #include <nav_msgs/Path.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -357,6 +358,19 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
 
 void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) const {
   std::lock_guard<std::mutex> lock(mapping_mutex_);
+  if (out_.match.matched) {
+    const WeakestDirection weakest = weakest_direction(out_.match, scene_, config_.mapping);
+    char text[128];
+    std::snprintf(text, sizeof(text), "x %.2f y %.2f z %.2f, sigma %.3g m", weakest.direction.x(),
+                  weakest.direction.y(), weakest.direction.z(), weakest.sigma);
+    status.add("weakest direction (sensor frame, LiDAR)", text);
+    if (weakest.degenerate) {
+      status.raise(ros_bridge::HealthLevel::kWarn,
+                   std::string("degenerate along ") + text +
+                       (weakest.held ? ": held by the motion sensors' prior"
+                                     : ": nothing holds it, the motion along it is a guess"));
+    }
+  }
   if (mapping_->localizing()) {
     // The saved map's keyframes, as when it was made: this drive's own stay out of the map.
     const int map_keyframes = mapping_->map_keyframes();

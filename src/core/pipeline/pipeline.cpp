@@ -39,6 +39,18 @@ Matrix6d pose_information(const MapMatchResult& match,
   return sensor_feedback_information(match, scene) + match.prior_information;
 }
 
+WeakestDirection weakest_direction(const MapMatchResult& match,
+                                   const std::optional<SceneDegeneration>& scene,
+                                   const MappingParams& params) {
+  const Observability seen = observability(sensor_feedback_information(match, scene));
+  WeakestDirection weakest;
+  weakest.direction = seen.weakest_direction();
+  weakest.sigma = seen.weakest_sigma();
+  weakest.degenerate = !(weakest.sigma <= params.degenerate_translation_sigma);
+  weakest.held = weakest.degenerate && match.motion_prior;
+  return weakest;
+}
+
 Pipeline::Pipeline(const Config& config)
     : config_(config),
       filter_(config),

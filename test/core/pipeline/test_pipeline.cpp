@@ -141,3 +141,27 @@ TEST(Pipeline, AnEmptyScanAndOneOfTwoMillionPointsAreProcessedAndCounted) {
   }
   EXPECT_EQ(static_cast<int>(pipeline.trajectory().size()), frames);
 }
+
+TEST(Pipeline, TheWeakestDirectionIsDegenerateBeyondTheThresholdAndSaysWhatHeldIt) {
+  MappingParams params;
+  params.degenerate_translation_sigma = 0.1;
+  MapMatchResult match;
+  match.matched = true;
+  match.information = Matrix6d::Identity() * 1e6;
+  match.information(3, 3) = 1.0;  // along the sensor's x: 1 m
+  WeakestDirection weakest = weakest_direction(match, std::nullopt, params);
+  EXPECT_GT(std::fabs(weakest.direction.x()), 0.999);
+  EXPECT_NEAR(weakest.sigma, 1.0, 1e-6);
+  EXPECT_TRUE(weakest.degenerate);
+  EXPECT_FALSE(weakest.held);
+  match.motion_prior = true;
+  EXPECT_TRUE(weakest_direction(match, std::nullopt, params).held);
+  // Well fixed everywhere, but the scene says y is its weak direction, fully degenerate: the
+  // correspondences along it are not the scene's.
+  match.information(3, 3) = 1e6;
+  EXPECT_FALSE(weakest_direction(match, std::nullopt, params).degenerate);
+  const WeakestDirection along_y =
+      weakest_direction(match, SceneDegeneration{Eigen::Vector3d::UnitY(), 1.0}, params);
+  EXPECT_TRUE(along_y.degenerate);
+  EXPECT_GT(std::fabs(along_y.direction.y()), 0.999);
+}

@@ -51,6 +51,18 @@ Matrix6d sensor_feedback_information(const MapMatchResult& match,
 // the correspondences' information as the motion sensors learn from it, and the priors'.
 Matrix6d pose_information(const MapMatchResult& match,
                           const std::optional<SceneDegeneration>& scene);
+// The translation direction a matched scan's correspondences fix worst (sensor frame) and their
+// 1-sigma along it (m; the scene's weak direction counted as above): degenerate beyond
+// mapping.degenerate_translation_sigma, and then held or not by the motion sensors' prior.
+struct WeakestDirection {
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  double sigma = 0.0;
+  bool degenerate = false;
+  bool held = false;
+};
+WeakestDirection weakest_direction(const MapMatchResult& match,
+                                   const std::optional<SceneDegeneration>& scene,
+                                   const MappingParams& params);
 // The same from the filter's degeneration and its (smoothed) mu, e.g. as a message carries them.
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
                                                        const Degeneration& degeneration, double mu);
