@@ -501,12 +501,12 @@ SteppedMapMatch::SteppedMapMatch(const MappingParams& params, const Cloud& corne
   State& state = *state_;
   state.done = map.empty() || params.max_iterations <= 0;
   // The vertical-structure prior, in the frame the map's points are in (the map frame's up moves
-  // with it while placing again). Gravity, where an IMU gives it, holds the attitude instead.
+  // with it while placing again), and gravity where an IMU gives it: both, since an IMU's gravity
+  // is only as level as its accelerometer's bias is known (a loop drifted by metres in height).
   if (!state.done && !sensors.empty()) {
     state.make_gravity_cost();
   }
-  if (!state.done && params.vertical_prior_weight > 0.0 && !wall_normals.empty() &&
-      !sensors.gravity) {
+  if (!state.done && params.vertical_prior_weight > 0.0 && !wall_normals.empty()) {
     state.walls_cost =
         vertical_walls_cost(wall_normals, state.placed_guess.linear(),
                             map.to_placement().linear() * Eigen::Vector3d::UnitZ(),
