@@ -195,9 +195,12 @@ class Report:
                 row.append(fmt(ratio))
             lines.append(f"| {SCENARIO_NAMES[scenario]} | " + " | ".join(row) + " |")
         kept = [i for i, scenario in enumerate(scenarios) if scenario not in DEGENERATE]
-        for label, indices in (("mean t_err", range(len(scenarios))),
-                               ("mean t_err, tunnels and corridor left out", kept)):
+        for label, key, indices in (
+                ("mean t_err", "mean_motion", range(len(scenarios))),
+                ("mean t_err, tunnels and corridor left out", "mean_motion_kept", kept)):
             averages = {m: mean([totals[m][i] for i in indices]) for m in present}
+            for m in present:
+                self.values[f"{key}/{sensor}/{m}/t_err"] = averages[m]
             lines.append(f"| **{label}** | " + " | ".join(fmt(averages[m], 3) for m in present) +
                          " |" * len(present))
         return "\n".join(lines)
