@@ -10,7 +10,7 @@
 #     --data    the folder with kitti_odometry/ (poses/, times/, seq07_frames0-4/, first10/) and
 #               clustering_bench/; default $ALEGO_DATA
 # Raw outputs go to results/experiments/ (git-ignored; kept between runs: delete it to start over).
-# The full run's simulated scans take 32 GB there.
+# The full run's simulated scans take 48 GB there.
 set -euo pipefail
 
 quick=()
