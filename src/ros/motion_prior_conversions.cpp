@@ -5,7 +5,6 @@
 #include <algorithm>
 
 #include "adaptive_lego_loam/io/io_error.h"
-#include "adaptive_lego_loam/ros/pose_conversions.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 namespace {
@@ -34,17 +33,38 @@ Eigen::Matrix<double, N, N> matrix_of(const boost::array<double, Size>& in,
   return m;
 }
 
+void set_pose(boost::array<double, 12>& out, const Eigen::Isometry3d& pose) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c)
+      out[r * 4 + c] = pose.matrix()(r, c);
+  }
+}
+
+Eigen::Isometry3d pose_of(const boost::array<double, 12>& in, const std::string& source) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c)
+      pose.matrix()(r, c) = in[r * 4 + c];
+  }
+  const Eigen::Matrix3d rotation = pose.linear();
+  if (!pose.matrix().allFinite() ||
+      !(rotation.transpose() * rotation).isApprox(Eigen::Matrix3d::Identity(), 1e-6)) {
+    throw IoError(source + ": motion is not a rigid motion ([R | t], R a rotation)");
+  }
+  return pose;
+}
+
 }  // namespace
 
 MotionPriors motion_priors_to_ros(const MotionPrediction* prediction,
                                   const std_msgs::Header& header) {
   MotionPriors msg;
   msg.header = header;
-  msg.motion.orientation.w = 1.0;
+  set_pose(msg.motion, Eigen::Isometry3d::Identity());
   msg.up.z = 1.0;
   if (prediction && prediction->motion) {
     msg.has_motion = true;
-    msg.motion = tf2::toMsg(prediction->motion->motion);
+    set_pose(msg.motion, prediction->motion->motion);
     set_matrix(msg.motion_information, prediction->motion->information);
   }
   if (prediction && prediction->gravity) {
@@ -59,7 +79,7 @@ MotionPrediction motion_priors_from_ros(const MotionPriors& msg, const std::stri
   MotionPrediction prediction;
   if (msg.has_motion) {
     MotionPrior prior;
-    prior.motion = pose_from_ros(msg.motion, source);
+    prior.motion = pose_of(msg.motion, source);
     prior.information = matrix_of<6>(msg.motion_information, source, "motion_information");
     prediction.motion = prior;
   }
@@ -81,10 +101,10 @@ MapMatch map_match_to_ros(const MapMatchResult& match,
   MapMatch msg;
   msg.header = header;
   msg.matched = match.matched;
-  msg.motion.orientation.w = 1.0;
+  set_pose(msg.motion, Eigen::Isometry3d::Identity());
   if (motion) {
     msg.has_motion = true;
-    msg.motion = tf2::toMsg(*motion);
+    set_pose(msg.motion, *motion);
   }
   set_matrix(msg.information, match.information);
   msg.degenerate_directions = match.degenerate_directions;
@@ -97,7 +117,7 @@ MappingFeedback mapping_feedback_from_ros(const MapMatch& msg, const std::string
   feedback.matched = msg.matched;
   feedback.motion_prior = msg.motion_prior;
   feedback.information = matrix_of<6>(msg.information, source, "information");
-  if (msg.has_motion) feedback.motion = pose_from_ros(msg.motion, source);
+  if (msg.has_motion) feedback.motion = pose_of(msg.motion, source);
   return feedback;
 }
 
