@@ -20,10 +20,9 @@
 namespace adaptive_lego_loam::nodes {
 namespace {
 
-std::vector<std::string> slot_names(bool with_degeneration, bool with_motion_priors) {
+std::vector<std::string> slot_names(bool with_motion_priors) {
   std::vector<std::string> names = {"laser_cloud_corner_last", "laser_cloud_surf_last",
-                                    "outlier_cloud_last", "laser_odom_to_init"};
-  if (with_degeneration) names.push_back("degeneration");
+                                    "outlier_cloud_last", "laser_odom_to_init", "degeneration"};
   if (with_motion_priors) names.push_back("motion_priors");
   return names;
 }
@@ -52,13 +51,9 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
       map_folder_(private_nh.param<std::string>("map", "")),
       initial_pose_(initial_pose_param(private_nh)),
       save_on_exit_(private_nh.param<std::string>("save_map_on_exit", "")),
-      uses_prior_(config.mapping.weak_direction_prior > 0.0),
       uses_motion_sensors_(private_nh.param("motion_sensors", false)),
-      uses_degeneration_(true),
-      degeneration_slot_(kOdometry + 1),
-      priors_slot_(kOdometry + 1 + uses_degeneration_),
       frames_(ros_bridge::load_frame_names(private_nh)),
-      pairing_("map_optimization", slot_names(uses_degeneration_, uses_motion_sensors_),
+      pairing_("map_optimization", slot_names(uses_motion_sensors_),
                private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
       surround_throttle_(private_nh.param("surround_period", 1.0)),
       path_throttle_(private_nh.param("path_period", 1.0)),
@@ -92,12 +87,10 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
       nh.subscribe("outlier_cloud_last", queue, &MapOptimizationNode::on_outliers, this));
   subscriptions_.push_back(
       nh.subscribe("laser_odom_to_init", queue, &MapOptimizationNode::on_odometry, this));
-  if (uses_degeneration_) {
-    // image_projection is a whole stage ahead: a larger queue keeps its messages until the
-    // features of the same scan arrive.
-    subscriptions_.push_back(
-        nh.subscribe("degeneration", 4 * queue, &MapOptimizationNode::on_degeneration, this));
-  }
+  // image_projection is a whole stage ahead: a larger queue keeps its messages until the
+  // features of the same scan arrive.
+  subscriptions_.push_back(
+      nh.subscribe("degeneration", 4 * queue, &MapOptimizationNode::on_degeneration, this));
   if (uses_motion_sensors_) {
     subscriptions_.push_back(
         nh.subscribe("motion_priors", queue, &MapOptimizationNode::on_motion_priors, this));
@@ -240,18 +233,14 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
                                             {topic(kCorners), topic(kSurfaces), topic(kOutliers)});
   const Eigen::Isometry3d odometry_pose =
       ros_bridge::pose_from_ros(odometry->pose.pose, topic(kOdometry));
-  std::optional<WeakDirectionPrior> prior;
-  scene_.reset();
-  if (uses_degeneration_) {
-    const DegenerationState& degeneration = *group.get<DegenerationState>(degeneration_slot_);
-    prior = ros_bridge::weak_direction_prior_from_ros(config_.mapping, degeneration);
-    scene_ = ros_bridge::scene_degeneration_from_ros(degeneration);
-  }
+  const DegenerationState& degeneration = *group.get<DegenerationState>(kDegeneration);
+  const std::optional<WeakDirectionPrior> prior =
+      ros_bridge::weak_direction_prior_from_ros(config_.mapping, degeneration);
+  scene_ = ros_bridge::scene_degeneration_from_ros(degeneration);
   // The motion sensors' priors of the scan, as the offline pipeline passes them (none: nullptr).
   std::optional<MotionPrediction> sensors;
   if (uses_motion_sensors_) {
-    sensors = ros_bridge::motion_priors_from_ros(*group.get<MotionPriors>(priors_slot_),
-                                                 topic(priors_slot_));
+    sensors = ros_bridge::motion_priors_from_ros(*group.get<MotionPriors>(kPriors), topic(kPriors));
     if (sensors->empty()) sensors.reset();
   }
   {

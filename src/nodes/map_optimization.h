@@ -37,10 +37,10 @@ class MapOptimizationNode {
   ~MapOptimizationNode();
 
  private:
-  // The optional slots follow the fixed ones: /degeneration (with the weak-direction prior or the
-  // motion sensors), then
-  // /motion_priors (with motion sensors), at degeneration_slot_ and priors_slot_.
-  enum Slot : std::size_t { kCorners, kSurfaces, kOutliers, kOdometry };
+  // /degeneration is paired with every scan: the scene's weak direction and mu weigh the
+  // weak-direction prior, the motion sensors' priors and the pose's covariance. /motion_priors
+  // only with motion sensors.
+  enum Slot : std::size_t { kCorners, kSurfaces, kOutliers, kOdometry, kDegeneration, kPriors };
 
   void on_corners(const sensor_msgs::PointCloud2ConstPtr& msg) { add(kCorners, msg->header, msg); }
   void on_surfaces(const sensor_msgs::PointCloud2ConstPtr& msg) {
@@ -51,9 +51,9 @@ class MapOptimizationNode {
   }
   void on_odometry(const nav_msgs::OdometryConstPtr& msg) { add(kOdometry, msg->header, msg); }
   void on_degeneration(const DegenerationStateConstPtr& msg) {
-    add(degeneration_slot_, msg->header, msg);
+    add(kDegeneration, msg->header, msg);
   }
-  void on_motion_priors(const MotionPriorsConstPtr& msg) { add(priors_slot_, msg->header, msg); }
+  void on_motion_priors(const MotionPriorsConstPtr& msg) { add(kPriors, msg->header, msg); }
   void on_initial_pose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool on_save_map(SaveMap::Request& request, SaveMap::Response& response);
 
@@ -84,13 +84,8 @@ class MapOptimizationNode {
   mutable std::mutex mapping_mutex_;  // the mapping, between scans and save_map
   std::unique_ptr<LidarMapping> mapping_;
   MappingOutput out_;
-  bool uses_prior_;
   bool uses_motion_sensors_;  // ~motion_sensors: feature_association sends /motion_priors
-  // The scene's weak direction and mu weigh the weak-direction prior, the motion sensors' priors
-  // and the pose's covariance: /degeneration is paired with every scan.
-  bool uses_degeneration_;
   std::optional<SceneDegeneration> scene_;  // the scan being mapped's, from /degeneration
-  std::size_t degeneration_slot_, priors_slot_;
   ros_bridge::FrameNames frames_;
   std::string sensor_frame_;
   long mapped_scans_ = 0;

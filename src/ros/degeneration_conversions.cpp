@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
+#include "adaptive_lego_loam/ros/arrow_marker.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 namespace {
@@ -13,32 +14,14 @@ constexpr double kArrowMuLength = 10.0;  // m added at mu = 1
 constexpr double kTextHeight = 3.0;      // m above the sensor
 
 visualization_msgs::Marker weak_direction_arrow(const DegenerationState& msg) {
-  visualization_msgs::Marker arrow;
-  arrow.header = msg.header;
-  arrow.ns = "weak_direction";
-  arrow.id = 0;
-  arrow.type = visualization_msgs::Marker::ARROW;
-  if (!msg.valid) {
-    arrow.action = visualization_msgs::Marker::DELETE;
-    return arrow;
-  }
-  arrow.action = visualization_msgs::Marker::ADD;
-  arrow.pose.orientation.w = 1.0;
   const double mu = std::clamp(msg.mu, 0.0, 1.0);
-  const double length = kArrowMinLength + kArrowMuLength * mu;
-  geometry_msgs::Point tail, head;
-  head.x = length * msg.weak_direction.x;
-  head.y = length * msg.weak_direction.y;
-  head.z = length * msg.weak_direction.z;
-  arrow.points = {tail, head};
-  arrow.scale.x = 0.5;  // shaft diameter
-  arrow.scale.y = 1.0;  // head diameter
-  arrow.scale.z = 1.5;  // head length
-  arrow.color.r = static_cast<float>(mu);
-  arrow.color.g = static_cast<float>(1.0 - mu);
-  arrow.color.b = 0.1f;
-  arrow.color.a = 1.0f;
-  return arrow;
+  std::optional<Eigen::Vector3d> head;
+  if (msg.valid) {
+    head = (kArrowMinLength + kArrowMuLength * mu) *
+           Eigen::Vector3d(msg.weak_direction.x, msg.weak_direction.y, msg.weak_direction.z);
+  }
+  return arrow_marker(msg.header, "weak_direction", head,
+                      {0.5, 1.0, 1.5, static_cast<float>(mu), static_cast<float>(1.0 - mu), 0.1f});
 }
 
 visualization_msgs::Marker mu_text(const DegenerationState& msg) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/ros/arrow_marker.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 namespace {
@@ -122,30 +123,9 @@ MappingFeedback mapping_feedback_from_ros(const MapMatch& msg, const std::string
 }
 
 visualization_msgs::Marker gravity_marker(const MotionPriors& msg) {
-  visualization_msgs::Marker arrow;
-  arrow.header = msg.header;
-  arrow.ns = "gravity";
-  arrow.id = 0;
-  arrow.type = visualization_msgs::Marker::ARROW;
-  if (!msg.has_gravity) {
-    arrow.action = visualization_msgs::Marker::DELETE;
-    return arrow;
-  }
-  arrow.action = visualization_msgs::Marker::ADD;
-  arrow.pose.orientation.w = 1.0;
-  geometry_msgs::Point tail, head;
-  head.x = kGravityArrowLength * msg.up.x;
-  head.y = kGravityArrowLength * msg.up.y;
-  head.z = kGravityArrowLength * msg.up.z;
-  arrow.points = {tail, head};
-  arrow.scale.x = 0.3;  // shaft diameter
-  arrow.scale.y = 0.7;  // head diameter
-  arrow.scale.z = 1.0;  // head length
-  arrow.color.r = 0.2f;
-  arrow.color.g = 0.6f;
-  arrow.color.b = 1.0f;
-  arrow.color.a = 1.0f;
-  return arrow;
+  std::optional<Eigen::Vector3d> head;
+  if (msg.has_gravity) head = kGravityArrowLength * Eigen::Vector3d(msg.up.x, msg.up.y, msg.up.z);
+  return arrow_marker(msg.header, "gravity", head, {0.3, 0.7, 1.0, 0.2f, 0.6f, 1.0f});
 }
 
 }  // namespace adaptive_lego_loam::ros_bridge
