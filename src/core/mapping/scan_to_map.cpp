@@ -502,7 +502,7 @@ SteppedMapMatch::SteppedMapMatch(const MappingParams& params, const Cloud& corne
   state.done = map.empty() || params.max_iterations <= 0;
   // The vertical-structure prior, in the frame the map's points are in (the map frame's up moves
   // with it while placing again), and gravity where an IMU gives it: both, since an IMU's gravity
-  // is only as level as its accelerometer's bias is known (a loop drifted by metres in height).
+  // is only as level as its accelerometer's bias is known, and a bias mis-learned tilts the map.
   if (!state.done && !sensors.empty()) {
     state.make_gravity_cost();
   }

@@ -23,15 +23,15 @@ struct Observability {
 // From the information of [rotation vector, translation] (6 x 6, symmetric, possibly singular).
 Observability observability(const Eigen::Matrix<double, 6, 6>& information);
 
-// The information with its translation along the unit `direction` kept only in the share `keep`
-// (the information along it times keep^2): what correspondences say along a direction the scene's
-// structure does not constrain (the ambient filter's weak direction, keep = 1 - mu) is mostly
-// not the scene's: rings and edges fixed to the sensor.
 // The covariance the information implies; along a direction it leaves open, or fixes worse than
 // `unknown_variance`, that variance (a pose covariance must be finite to be published).
 Eigen::Matrix<double, 6, 6> covariance_from_information(
     const Eigen::Matrix<double, 6, 6>& information, double unknown_variance = 1e4);
 
+// The information with its translation along the unit `direction` kept only in the share `keep`
+// (the information along it times keep^2): what correspondences say along a direction the scene's
+// structure does not constrain (the ambient filter's weak direction, keep = 1 - mu) is mostly
+// not the scene's: rings and edges fixed to the sensor.
 Eigen::Matrix<double, 6, 6> discounted_along(const Eigen::Matrix<double, 6, 6>& information,
                                              const Eigen::Vector3d& direction, double keep);
 

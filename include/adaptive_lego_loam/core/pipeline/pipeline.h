@@ -39,9 +39,13 @@ struct FrameResult {
 // when mu is unknown).
 std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
                                                        const AmbientFilterResult& filtered);
+// The same from the filter's degeneration and its (smoothed) mu, e.g. as a message carries them.
+std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
+                                                       const Degeneration& degeneration, double mu);
 // The ambient filter's view of the scene for mapping: its weak direction and (smoothed) mu, when
 // this scan's mu is known.
 std::optional<SceneDegeneration> scene_degeneration(const AmbientFilterResult& filtered);
+// The same from the filter's degeneration and its (smoothed) mu.
 std::optional<SceneDegeneration> scene_degeneration(const Degeneration& degeneration, double mu);
 // What the motion sensors learn from a mapped scan: the correspondences' information, along the
 // scene's weak direction only in the share the scene constrains it (1 - mu).
@@ -63,9 +67,6 @@ struct WeakestDirection {
 WeakestDirection weakest_direction(const MapMatchResult& match,
                                    const std::optional<SceneDegeneration>& scene,
                                    const MappingParams& params);
-// The same from the filter's degeneration and its (smoothed) mu, e.g. as a message carries them.
-std::optional<WeakDirectionPrior> weak_direction_prior(const MappingParams& params,
-                                                       const Degeneration& degeneration, double mu);
 
 class Pipeline {
  public:
