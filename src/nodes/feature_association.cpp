@@ -343,8 +343,10 @@ void FeatureAssociationNode::publish(const std_msgs::Header& header,
   }
   std_msgs::Header odometry_header = header;
   odometry_header.frame_id = frames_.odom;
-  publish_shared(odometry_pub_,
-                 ros_bridge::odometry_to_ros(out_.pose, odometry_header, header.frame_id));
+  nav_msgs::Odometry odometry =
+      ros_bridge::odometry_to_ros(out_.pose, odometry_header, header.frame_id);
+  ros_bridge::set_pose_covariance(out_.pose_covariance, odometry.pose);
+  publish_shared(odometry_pub_, std::move(odometry));
   if (!relay_) return;
   // Every scan's, so that map_optimization pairs it; both flags false when LiDAR-only.
   MotionPriors priors = ros_bridge::motion_priors_to_ros(prediction, header);

@@ -16,6 +16,7 @@
 #include "adaptive_lego_loam/ros/motion_prior_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
 #include "adaptive_lego_loam/ros/shared_publish.h"
+#include "adaptive_lego_loam/ros/uncertainty_markers.h"
 
 namespace adaptive_lego_loam::nodes {
 namespace {
@@ -79,6 +80,7 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
   keyframe_pub_ = nh.advertise<sensor_msgs::PointCloud2>("key_pose_origin", 1);
   path_pub_ = nh.advertise<nav_msgs::Path>("path", 1);
   map_match_pub_ = nh.advertise<MapMatch>("map_match", queue);
+  uncertainty_pub_ = nh.advertise<visualization_msgs::MarkerArray>("pose_uncertainty_markers", 1);
   subscriptions_.push_back(
       nh.subscribe("laser_cloud_corner_last", queue, &MapOptimizationNode::on_corners, this));
   subscriptions_.push_back(
@@ -314,10 +316,8 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
   map_header.stamp = stamp;
   map_header.frame_id = frames_.map;
   nav_msgs::Odometry mapped = ros_bridge::odometry_to_ros(out_.pose, map_header, sensor_frame_);
-  ros_bridge::set_pose_covariance(
-      covariance_from_information(out_.match.matched ? pose_information(out_.match, scene_)
-                                                     : Matrix6d::Zero()),
-      mapped.pose);
+  const Matrix6d covariance = mapped_pose_covariance(out_, scene_);
+  ros_bridge::set_pose_covariance(covariance, mapped.pose);
   // The mapped motion, without the map frame's jumps: feature_association's motion model.
   if (out_.motion && last_stamp_ && stamp > *last_stamp_) {
     mapped.twist.twist = ros_bridge::motion_to_twist(*out_.motion, (stamp - *last_stamp_).toSec());
@@ -331,6 +331,13 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
   match.information = sensor_feedback_information(out_.match, scene_);
   publish_shared(map_match_pub_, ros_bridge::map_match_to_ros(match, out_.motion, sensor_header));
   publish_shared(mapped_pub_, std::move(mapped));
+  if (uncertainty_pub_.getNumSubscribers() > 0) {
+    WeakestDirection lidar;  // unmatched: nothing fixes the pose
+    lidar.degenerate = true;
+    if (out_.match.matched) lidar = weakest_direction(out_.match, scene_, config_.mapping);
+    publish_shared(uncertainty_pub_,
+                   ros_bridge::uncertainty_markers(sensor_header, covariance, lidar));
+  }
   tf_broadcaster_.sendTransform(
       ros_bridge::transform_to_ros(mapping_->fusion().correction(), map_header, frames_.odom));
   if (out_.keyframe && keyframe_pub_.getNumSubscribers() > 0) {

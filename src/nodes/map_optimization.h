@@ -104,7 +104,8 @@ class MapOptimizationNode {
   ros_bridge::StageSummary summary_;
   std::vector<ros::Subscriber> subscriptions_;  // in Slot order
   ros::Subscriber initial_pose_sub_;
-  ros::Publisher mapped_pub_, surround_pub_, keyframe_pub_, path_pub_, map_match_pub_;
+  ros::Publisher mapped_pub_, surround_pub_, keyframe_pub_, path_pub_, map_match_pub_,
+      uncertainty_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   ros_bridge::NodeDiagnostics diagnostics_;
   HeapTrimmer heap_trimmer_;  // in a nodelet manager, for every stage in it

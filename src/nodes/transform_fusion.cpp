@@ -33,8 +33,10 @@ void TransformFusionNode::on_odometry(const nav_msgs::OdometryConstPtr& msg) {
     fusion_ = TransformFusion();
   }
   Eigen::Isometry3d odometry_pose;
+  Matrix6d odometry_covariance;
   try {
     odometry_pose = ros_bridge::pose_from_ros(msg->pose.pose, odometry_sub_.getTopic());
+    odometry_covariance = ros_bridge::pose_covariance_from_ros(msg->pose, odometry_sub_.getTopic());
   } catch (const std::exception& e) {
     diagnostics_.dropped("bad pose");
     warn_(e.what());
@@ -43,9 +45,11 @@ void TransformFusionNode::on_odometry(const nav_msgs::OdometryConstPtr& msg) {
   add(kOdometry, msg->header, msg);
   std_msgs::Header map_header = msg->header;
   map_header.frame_id = frames_.map;
-  ros_bridge::publish_shared(
-      integrated_pub_,
-      ros_bridge::odometry_to_ros(fusion_.fuse(odometry_pose), map_header, msg->child_frame_id));
+  nav_msgs::Odometry integrated =
+      ros_bridge::odometry_to_ros(fusion_.fuse(odometry_pose), map_header, msg->child_frame_id);
+  ros_bridge::set_pose_covariance(fusion_.fused_covariance(odometry_pose, odometry_covariance),
+                                  integrated.pose);
+  ros_bridge::publish_shared(integrated_pub_, std::move(integrated));
   publish_odom_to_base(odometry_pose, *msg);
   diagnostics_.processed(StageTimes());
 }
@@ -55,11 +59,13 @@ void TransformFusionNode::add(Slot slot, const std_msgs::Header& header,
   const auto group = pairing_.add(slot, header.stamp, std::move(msg));
   if (!group) return;
   try {
+    const nav_msgs::Odometry& odometry = *group->get<nav_msgs::Odometry>(kOdometry);
+    const nav_msgs::Odometry& mapped = *group->get<nav_msgs::Odometry>(kMapped);
     fusion_.update_mapping(
-        ros_bridge::pose_from_ros(group->get<nav_msgs::Odometry>(kOdometry)->pose.pose,
-                                  odometry_sub_.getTopic()),
-        ros_bridge::pose_from_ros(group->get<nav_msgs::Odometry>(kMapped)->pose.pose,
-                                  mapped_sub_.getTopic()));
+        ros_bridge::pose_from_ros(odometry.pose.pose, odometry_sub_.getTopic()),
+        ros_bridge::pose_covariance_from_ros(odometry.pose, odometry_sub_.getTopic()),
+        ros_bridge::pose_from_ros(mapped.pose.pose, mapped_sub_.getTopic()),
+        ros_bridge::pose_covariance_from_ros(mapped.pose, mapped_sub_.getTopic()));
   } catch (const std::exception& e) {
     warn_(e.what());
   }

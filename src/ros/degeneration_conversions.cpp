@@ -25,24 +25,13 @@ visualization_msgs::Marker weak_direction_arrow(const DegenerationState& msg) {
 }
 
 visualization_msgs::Marker mu_text(const DegenerationState& msg) {
-  visualization_msgs::Marker text;
-  text.header = msg.header;
-  text.ns = "degeneration";
-  text.id = 1;
-  text.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
-  text.action = visualization_msgs::Marker::ADD;
-  text.pose.orientation.w = 1.0;
-  text.pose.position.z = kTextHeight;
-  text.scale.z = 2.0;  // letter height, m
-  text.color.r = text.color.g = text.color.b = text.color.a = 1.0f;
   char line[96];
   if (msg.valid) {
     std::snprintf(line, sizeof(line), "mu %.2f  beta0 %.1f deg", msg.mu, msg.beta0_deg);
   } else {
     std::snprintf(line, sizeof(line), "mu unknown  beta0 %.1f deg", msg.beta0_deg);
   }
-  text.text = line;
-  return text;
+  return text_marker(msg.header, "degeneration", 1, line, kTextHeight, 2.0);
 }
 
 }  // namespace

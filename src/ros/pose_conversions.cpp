@@ -18,21 +18,45 @@ nav_msgs::Odometry odometry_to_ros(const Eigen::Isometry3d& pose, const std_msgs
   return msg;
 }
 
-void set_pose_covariance(const Eigen::Matrix<double, 6, 6>& covariance,
-                         geometry_msgs::PoseWithCovariance& pose) {
-  const Eigen::Quaterniond q = Eigen::Quaterniond(pose.pose.orientation.w, pose.pose.orientation.x,
-                                                  pose.pose.orientation.y, pose.pose.orientation.z)
-                                   .normalized();
-  const Eigen::Matrix3d rotation = q.toRotationMatrix();
-  // Parent-frame [translation, rotation] from child-frame [rotation, translation].
+namespace {
+
+// Parent-frame [translation, rotation] from child-frame [rotation, translation] (orthonormal:
+// its transpose goes back).
+Eigen::Matrix<double, 6, 6> child_to_parent(const geometry_msgs::Quaternion& orientation) {
+  const Eigen::Matrix3d rotation =
+      Eigen::Quaterniond(orientation.w, orientation.x, orientation.y, orientation.z)
+          .normalized()
+          .toRotationMatrix();
   Eigen::Matrix<double, 6, 6> to_parent = Eigen::Matrix<double, 6, 6>::Zero();
   to_parent.topRightCorner<3, 3>() = rotation;
   to_parent.bottomLeftCorner<3, 3>() = rotation;
+  return to_parent;
+}
+
+}  // namespace
+
+void set_pose_covariance(const Eigen::Matrix<double, 6, 6>& covariance,
+                         geometry_msgs::PoseWithCovariance& pose) {
+  const Eigen::Matrix<double, 6, 6> to_parent = child_to_parent(pose.pose.orientation);
   const Eigen::Matrix<double, 6, 6> parent = to_parent * covariance * to_parent.transpose();
   for (int row = 0; row < 6; ++row) {
     for (int col = 0; col < 6; ++col)
       pose.covariance[6 * row + col] = parent(row, col);
   }
+}
+
+Eigen::Matrix<double, 6, 6> pose_covariance_from_ros(const geometry_msgs::PoseWithCovariance& pose,
+                                                     const std::string& source) {
+  Eigen::Matrix<double, 6, 6> parent;
+  for (int row = 0; row < 6; ++row) {
+    for (int col = 0; col < 6; ++col) {
+      parent(row, col) = pose.covariance[6 * row + col];
+      if (!std::isfinite(parent(row, col)))
+        throw IoError(source + ": pose covariance holds a non-finite number");
+    }
+  }
+  const Eigen::Matrix<double, 6, 6> to_parent = child_to_parent(pose.pose.orientation);
+  return to_parent.transpose() * parent * to_parent;
 }
 
 Eigen::Isometry3d pose_from_ros(const geometry_msgs::Pose& pose, const std::string& source) {

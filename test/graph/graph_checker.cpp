@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
+#include <Eigen/Eigenvalues>
 
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
@@ -262,6 +263,54 @@ TEST_F(Graph, DegenerationHasValidMuForEveryScan) {
     EXPECT_GE(msg.beta0_deg, 10.0f - 1e-4f) << stamp;
     EXPECT_LE(msg.beta0_deg, 60.0f + 1e-4f) << stamp;
     EXPECT_GT(msg.skeleton_points, 0u) << stamp;
+  }
+}
+
+namespace {
+
+// A published covariance: finite, symmetric, no negative variance.
+void expect_covariance(const Recording::Covariance& covariance, const std::string& what) {
+  EXPECT_TRUE(covariance.allFinite()) << what;
+  EXPECT_LT((covariance - covariance.transpose()).cwiseAbs().maxCoeff(), 1e-9) << what;
+  const Eigen::SelfAdjointEigenSolver<Recording::Covariance> solver(covariance);
+  EXPECT_GE(solver.eigenvalues().minCoeff(), -1e-9) << what;
+}
+
+double position_variance(const Recording::Covariance& covariance) {
+  return covariance.topLeftCorner<3, 3>().trace();
+}
+
+}  // namespace
+
+// The three poses carry covariances: each is zero at the first scan, which defines the odometry's
+// frame and the map's; then the odometry's grows scan after scan, the mapped pose's is the scan's
+// place in the map, the fused one's mapping's grown by the odometry since.
+TEST_F(Graph, EveryPoseCarriesItsCovariance) {
+  ASSERT_EQ(recording_.odometry_covariance.size(), bag_.clouds.size() + 2) << "and two replayed";
+  double last_odometry = -1.0;
+  for (std::size_t i = 0; i < bag_.clouds.size(); ++i) {
+    const ros::Time& stamp = bag_.clouds[i].header.stamp;
+    ASSERT_TRUE(recording_.odometry_covariance.count(stamp) &&
+                recording_.mapped_covariance.count(stamp) &&
+                recording_.integrated_covariance.count(stamp))
+        << "scan " << i;
+    const std::string scan = "scan " + std::to_string(i);
+    expect_covariance(recording_.odometry_covariance.at(stamp), "odometry, " + scan);
+    expect_covariance(recording_.mapped_covariance.at(stamp), "mapped, " + scan);
+    expect_covariance(recording_.integrated_covariance.at(stamp), "integrated, " + scan);
+    const double odometry = position_variance(recording_.odometry_covariance.at(stamp));
+    const double integrated = position_variance(recording_.integrated_covariance.at(stamp));
+    const double mapped = position_variance(recording_.mapped_covariance.at(stamp));
+    if (i == 0) {
+      EXPECT_EQ(odometry, 0.0);
+      EXPECT_EQ(mapped, 0.0);
+      EXPECT_EQ(integrated, 0.0);
+    } else {
+      EXPECT_GT(odometry, last_odometry) << scan;
+      EXPECT_GT(mapped, 0.0) << scan;
+      EXPECT_GT(integrated, 0.0) << scan;
+    }
+    last_odometry = odometry;
   }
 }
 

@@ -32,6 +32,9 @@ namespace adaptive_lego_loam::graph_test {
 // What the checker saw on the graph's outputs.
 struct Recording {
   std::map<ros::Time, Eigen::Isometry3d> mapped, integrated;
+  // Each pose's covariance as published (nav_msgs/Odometry's: parent-frame axes).
+  using Covariance = Eigen::Matrix<double, 6, 6>;
+  std::map<ros::Time, Covariance> odometry_covariance, mapped_covariance, integrated_covariance;
   std::map<ros::Time, std::string> mapped_child_frame;
   std::map<ros::Time, DegenerationState> degeneration;
   std::vector<std::string> image_projection_warnings;
@@ -83,6 +86,10 @@ inline Eigen::Isometry3d pose_of(const nav_msgs::Odometry& msg) {
   return ros_bridge::pose_from_ros(msg.pose.pose, "test");
 }
 
+inline Recording::Covariance covariance_of(const nav_msgs::Odometry& msg) {
+  return Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(msg.pose.covariance.data());
+}
+
 // A /diagnostics status's key-value pairs.
 inline std::map<std::string, std::string> values_of(
     const diagnostic_msgs::DiagnosticStatus& status) {
@@ -101,11 +108,17 @@ class Player {
     subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
         "/aft_mapped_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
           recording_.mapped[m->header.stamp] = pose_of(*m);
+          recording_.mapped_covariance[m->header.stamp] = covariance_of(*m);
           recording_.mapped_child_frame[m->header.stamp] = m->child_frame_id;
         }));
     subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
         "/integrated_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
           recording_.integrated[m->header.stamp] = pose_of(*m);
+          recording_.integrated_covariance[m->header.stamp] = covariance_of(*m);
+        }));
+    subs_.push_back(nh_.subscribe<nav_msgs::Odometry>(
+        "/laser_odom_to_init", 10, [this](const nav_msgs::OdometryConstPtr& m) {
+          recording_.odometry_covariance[m->header.stamp] = covariance_of(*m);
         }));
     subs_.push_back(nh_.subscribe<DegenerationState>(
         "/degeneration", 10, [this](const DegenerationStateConstPtr& m) {

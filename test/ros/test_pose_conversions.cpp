@@ -93,3 +93,22 @@ TEST(PoseConversions, PathHoldsEveryPoseWithItsStamp) {
   EXPECT_DOUBLE_EQ(path.poses[1].pose.position.z, 0.4);
   EXPECT_THROW(path_to_ros(poses, {ros::Time(1.0)}, "map"), std::invalid_argument);
 }
+
+TEST(PoseConversions, APoseCovarianceReadsBackAsWritten) {
+  nav_msgs::Odometry msg;
+  msg.pose.pose.orientation.z = std::sin(0.35);
+  msg.pose.pose.orientation.w = std::cos(0.35);
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Identity() * 1e-4;
+  covariance(3, 3) = 2.0;
+  covariance(0, 4) = covariance(4, 0) = 3e-5;
+  set_pose_covariance(covariance, msg.pose);
+  EXPECT_TRUE(pose_covariance_from_ros(msg.pose, "t").isApprox(covariance, 1e-12));
+  msg.pose.covariance[7] = std::nan("");
+  try {
+    pose_covariance_from_ros(msg.pose, "/laser_odom_to_init");
+    FAIL() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "/laser_odom_to_init: pose covariance holds a non-finite number");
+  }
+}

@@ -24,6 +24,10 @@ nav_msgs::Odometry odometry_to_ros(const Eigen::Isometry3d& pose, const std_msgs
 // in the parent frame's axes, row-major.
 void set_pose_covariance(const Eigen::Matrix<double, 6, 6>& covariance,
                          geometry_msgs::PoseWithCovariance& pose);
+// set_pose_covariance read back: the core's covariance of the message's pose (its orientation
+// must be a valid quaternion). Throws IoError naming `source` on a non-finite entry.
+Eigen::Matrix<double, 6, 6> pose_covariance_from_ros(const geometry_msgs::PoseWithCovariance& pose,
+                                                     const std::string& source);
 
 // Throws IoError naming `source` on a non-finite number or a zero quaternion; the quaternion is
 // normalised.

@@ -2,7 +2,9 @@
 
 #include <cmath>
 
+#include "adaptive_lego_loam/core/odometry/covariance_propagation.h"
 #include "adaptive_lego_loam/core/odometry/deskew.h"
+#include "adaptive_lego_loam/core/odometry/observability.h"
 #include "adaptive_lego_loam/core/odometry/start_search.h"
 
 namespace adaptive_lego_loam {
@@ -41,10 +43,9 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
   extractor_.extract(cloud, points_, outliers_, out.features);
   out.times.add("features", watch.lap_ms());
 
-  const Eigen::Isometry3d prediction =
-      sensors && sensors->motion ? sensors->motion->motion
-      : params_.constant_velocity ? last_motion_
-                                  : Eigen::Isometry3d::Identity();
+  const Eigen::Isometry3d prediction = sensors && sensors->motion  ? sensors->motion->motion
+                                       : params_.constant_velocity ? last_motion_
+                                                                   : Eigen::Isometry3d::Identity();
   // The first pair: no motion is known yet, and the sensor may already be moving fast.
   const bool start_search = params_.start_search_max_speed > 0.0;
   if (scans_ == 1 && start_search) {
@@ -63,8 +64,15 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
     out.odometry.rejected = true;
   }
   last_motion_ = out.odometry.motion;
+  if (scans_ > 0) {
+    const bool measured = out.odometry.registered && !out.odometry.rejected;
+    pose_covariance_ = compose_covariance(
+        pose_covariance_, out.odometry.motion,
+        covariance_from_information(measured ? out.odometry.information : Matrix6d::Zero()));
+  }
   pose_ = pose_ * out.odometry.motion;
   out.pose = pose_;
+  out.pose_covariance = pose_covariance_;
   first_ = false;
   ++scans_;
   out.times.add("odometry", watch.lap_ms());

@@ -7,6 +7,8 @@
 #include <cmath>
 
 #include "adaptive_lego_loam/core/odometry/residuals.h"
+#include "adaptive_lego_loam/core/odometry/observability.h"
+#include <cstdio>
 
 namespace adaptive_lego_loam {
 
@@ -150,7 +152,7 @@ void ScanToScanOdometry::solve(const Correspondences& matches, MatchKinds kinds,
 }
 
 OdometryResult ScanToScanOdometry::align(const FeatureSet& current, const Eigen::Isometry3d& guess,
-                                         int iterations) const {
+                                         int iterations, Correspondences* final_matches) const {
   OdometryResult result;
   result.motion = guess;
   double pose[6];
@@ -176,6 +178,7 @@ OdometryResult ScanToScanOdometry::align(const FeatureSet& current, const Eigen:
   result.plane_matches = static_cast<int>(matches.planes.size());
   result.registered = result.edge_matches + result.plane_matches >= 10;
   if (result.registered) result.motion = euler_vector_to_pose(pose);
+  if (final_matches) *final_matches = std::move(matches);
   return result;
 }
 
@@ -194,7 +197,12 @@ OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
     // The first pair starts from no motion known, possibly far from the truth: more searches.
     const int iterations = first_pair_ ? 4 * params_.max_iterations : params_.max_iterations;
     first_pair_ = false;
-    result = align(current, guess, iterations);
+    Correspondences matches;
+    result = align(current, guess, iterations, &matches);
+    if (result.registered) {
+      result.information = correspondence_information(matches, result.motion, params_.huber_loss,
+                                                      params_.residual_sigma);
+    }
   }
   keep(current);
   return result;

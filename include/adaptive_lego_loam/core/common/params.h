@@ -159,6 +159,9 @@ struct OdometryParams {
   // sensor then cannot outvote the scene. 0: every correspondence weighs the same.
   double range_weight_fit_error = 0.0;
   double range_weight_noise = 0.02;  // m
+  // The 1-sigma error of a scan-to-scan residual (m): the information of the registration and the
+  // covariance of the odometry's pose (MappingParams::residual_sigma's counterpart).
+  double residual_sigma = 0.4;
 };
 
 // Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).

@@ -22,8 +22,8 @@ bool sweep_fractions(const std::vector<ScanPoint>& points, bool has_time, double
 void deskew_to_sweep_end(const Eigen::Isometry3d& sweep_motion, const std::vector<float>& fractions,
                          std::vector<ScanPoint>& points);
 
-// The same along a sweep whose poses the motion sensors measured (SweepMotion: an IMU's rotation and
-// the filter's velocity, not a constant velocity).
+// The same along a sweep whose poses the motion sensors measured (SweepMotion: an IMU's rotation
+// and the filter's velocity, not a constant velocity).
 void deskew_to_sweep_end(const SweepMotion& sweep, const std::vector<float>& fractions,
                          std::vector<ScanPoint>& points);
 

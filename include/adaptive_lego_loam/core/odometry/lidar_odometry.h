@@ -20,6 +20,10 @@ struct OdometryOutput {
   FeatureSet features;  // de-skewed to the end of the sweep
   OdometryResult odometry;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // in the odometry frame
+  // Of `pose` (covariance_propagation.h): each registration's covariance added to the last
+  // pose's; a motion not registered (or rejected) adds the unknown variance of
+  // covariance_from_information.
+  Eigen::Matrix<double, 6, 6> pose_covariance = Eigen::Matrix<double, 6, 6>::Zero();
   bool deskewed_by_time_field = false;
   StageTimes times;
 };
@@ -52,6 +56,7 @@ class LidarOdometry {
   CloudPtr previous_start_points_;  // the first scan's non-ground points, until the second
   Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d pose_ = Eigen::Isometry3d::Identity();
+  Eigen::Matrix<double, 6, 6> pose_covariance_ = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 // Whether `motion`, over one scan period, is finite and within the odometry's max_speed and

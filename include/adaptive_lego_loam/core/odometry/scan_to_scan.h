@@ -25,6 +25,10 @@ struct OdometryResult {
   // The registration's motion was implausible (OdometryParams::max_speed, max_turn_rate_deg) and
   // `motion` is the prediction instead.
   bool rejected = false;
+  // What the last correspondences say of the motion (correspondence_information over
+  // OdometryParams::residual_sigma, at `motion`, in the current scan's frame); zero unless
+  // registered. Only register_scan fills it.
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 class ScanToScanOdometry {
@@ -44,8 +48,9 @@ class ScanToScanOdometry {
 
  private:
   // Registration from `guess` with up to `iterations` correspondence searches; no state changes.
-  OdometryResult align(const FeatureSet& current, const Eigen::Isometry3d& guess,
-                       int iterations) const;
+  // The last correspondences go to `final_matches` when given.
+  OdometryResult align(const FeatureSet& current, const Eigen::Isometry3d& guess, int iterations,
+                       Correspondences* final_matches = nullptr) const;
   void keep(const FeatureSet& current);
   void find_edge_matches(const Cloud& sharp, const Eigen::Isometry3d& pose,
                          Correspondences& matches) const;

@@ -55,6 +55,11 @@ Matrix6d sensor_feedback_information(const MapMatchResult& match,
 // the correspondences' information as the motion sensors learn from it, and the priors'.
 Matrix6d pose_information(const MapMatchResult& match,
                           const std::optional<SceneDegeneration>& scene);
+// The covariance published with a mapped pose (covariance_from_information of pose_information):
+// zero on the scan that starts a map, which defines the map frame; the unknown variance wherever
+// a scan was not matched (the pose is the guess).
+Matrix6d mapped_pose_covariance(const MappingOutput& mapped,
+                                const std::optional<SceneDegeneration>& scene);
 // The translation direction a matched scan's correspondences fix worst (sensor frame) and their
 // 1-sigma along it (m; the scene's weak direction counted as above): degenerate beyond
 // mapping.degenerate_translation_sigma, and then held or not by the motion sensors' prior.
