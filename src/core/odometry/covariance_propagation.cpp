@@ -4,22 +4,10 @@
 #include <algorithm>
 #include <limits>
 
+#include "adaptive_lego_loam/core/motion_sensors/motion_prediction.h"
+
 namespace adaptive_lego_loam {
 namespace {
-
-// The adjoint of `pose` on [rotation vector, translation]: exp(xi) pose = pose exp(Ad xi) for
-// Ad the adjoint of pose^-1, used below.
-Matrix6d adjoint(const Eigen::Isometry3d& pose) {
-  const Eigen::Matrix3d& rotation = pose.linear();
-  const Eigen::Vector3d& t = pose.translation();
-  Eigen::Matrix3d t_cross;
-  t_cross << 0.0, -t.z(), t.y(), t.z(), 0.0, -t.x(), -t.y(), t.x(), 0.0;
-  Matrix6d out = Matrix6d::Zero();
-  out.topLeftCorner<3, 3>() = rotation;
-  out.bottomRightCorner<3, 3>() = rotation;
-  out.bottomLeftCorner<3, 3>() = t_cross * rotation;
-  return out;
-}
 
 // The symmetric matrix with its eigenvalues held in [low, high].
 Matrix6d clamped(const Matrix6d& covariance, double low, double high) {

@@ -9,7 +9,8 @@
 
 namespace adaptive_lego_loam {
 
-using Matrix6d = Eigen::Matrix<double, 6, 6>;  // as in core/motion_sensors
+using Matrix6d =
+    Eigen::Matrix<double, 6, 6>;  // as in core/motion_sensors (its adjoint carries these)
 
 // The covariance of pose * motion: the pose's turned into the motion's end frame plus the
 // motion's own. Variances past `max_variance` are held there: a direction the chain lost once
