@@ -363,7 +363,7 @@ void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
     if (weakest.degenerate) {
       status.raise(ros_bridge::HealthLevel::kWarn,
                    std::string("degenerate along ") + text +
-                       (weakest.held ? ": held by the motion sensors' prior"
+                       (weakest.held ? ": held by " + weakest.held_by
                                      : ": nothing holds it, the motion along it is a guess"));
     }
   }

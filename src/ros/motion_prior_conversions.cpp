@@ -67,6 +67,8 @@ MotionPriors motion_priors_to_ros(const MotionPrediction* prediction,
     msg.has_motion = true;
     set_pose(msg.motion, prediction->motion->motion);
     set_matrix(msg.motion_information, prediction->motion->information);
+    msg.motion_from_imu = prediction->motion->from_imu;
+    msg.motion_from_wheel = prediction->motion->from_wheel;
   }
   if (prediction && prediction->gravity) {
     msg.has_gravity = true;
@@ -82,6 +84,8 @@ MotionPrediction motion_priors_from_ros(const MotionPriors& msg, const std::stri
     MotionPrior prior;
     prior.motion = pose_of(msg.motion, source);
     prior.information = matrix_of<6>(msg.motion_information, source, "motion_information");
+    prior.from_imu = msg.motion_from_imu;
+    prior.from_wheel = msg.motion_from_wheel;
     prediction.motion = prior;
   }
   if (msg.has_gravity) {

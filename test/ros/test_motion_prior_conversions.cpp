@@ -39,7 +39,7 @@ Matrix6d an_information() {
 
 MotionPrediction a_prediction() {
   MotionPrediction prediction;
-  prediction.motion = MotionPrior{a_motion(), an_information()};
+  prediction.motion = MotionPrior{a_motion(), an_information(), true, false};
   GravityPrior gravity;
   gravity.up = Eigen::Vector3d(0.05, -0.02, 1.0).normalized();
   gravity.covariance = Eigen::Matrix3d::Identity() * 1e-4;
@@ -63,6 +63,8 @@ TEST(MotionPriorConversions, ThePriorsGoThroughAMessage) {
   // Exact, to the bit: a quaternion's round trip would move the graph's poses off run_sequence's.
   EXPECT_EQ(back.motion->motion.matrix(), a_motion().matrix());
   EXPECT_EQ(back.motion->information, an_information());  // row-major, exact
+  EXPECT_TRUE(back.motion->from_imu);
+  EXPECT_FALSE(back.motion->from_wheel);
   ASSERT_TRUE(back.gravity);
   EXPECT_EQ(back.gravity->up, a_prediction().gravity->up);
   EXPECT_EQ(back.gravity->covariance, a_prediction().gravity->covariance);

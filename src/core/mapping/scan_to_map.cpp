@@ -384,6 +384,8 @@ void SteppedMapMatch::State::add_sensor_priors(ceres::Problem& problem, double* 
   if (motion_cost) {
     problem.AddResidualBlock(motion_cost.get(), motion_loss.get(), q, t);
     result.motion_prior = true;
+    result.prior_from_imu = sensors.motion->from_imu;
+    result.prior_from_wheel = sensors.motion->from_wheel;
   }
   if (gravity_cost) problem.AddResidualBlock(gravity_cost.get(), nullptr, q);
 }

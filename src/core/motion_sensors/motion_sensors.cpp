@@ -157,6 +157,8 @@ void MotionSensors::predict_with_filter(double stamp, double sweep_period) {
   MotionPrior prior;
   prior.motion = motion_in_frame(imu_motion, lidar_from_imu_);
   prior.information = symmetric_inverse(to_lidar * imu_covariance * to_lidar.transpose());
+  prior.from_imu = true;
+  prior.from_wheel = status_.wheel_in_use;
   prediction_.motion = prior;
   GravityPrior gravity;
   gravity.up = lidar_from_imu_.linear() * filter_.up_in_imu();
@@ -290,6 +292,7 @@ void MotionSensors::predict_with_wheel(double stamp) {
   }
   prediction_.motion =
       wheel_prior(*wheel_motion_, wheel_scale_.scale(), wheel_scale_.sigma(), lidar_from_base_);
+  prediction_.motion->from_wheel = true;
   status_.wheel_in_use = true;
 }
 

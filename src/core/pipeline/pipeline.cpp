@@ -47,6 +47,17 @@ Matrix6d mapped_pose_covariance(const MappingOutput& mapped,
                                                           : Matrix6d::Zero());
 }
 
+namespace {
+
+std::string prior_sources(const MapMatchResult& match) {
+  if (match.prior_from_imu && match.prior_from_wheel) return "the IMU and the wheel odometry";
+  if (match.prior_from_imu) return "the IMU";
+  if (match.prior_from_wheel) return "the wheel odometry";
+  return "the motion sensors";
+}
+
+}  // namespace
+
 WeakestDirection weakest_direction(const MapMatchResult& match,
                                    const std::optional<SceneDegeneration>& scene,
                                    const MappingParams& params) {
@@ -56,6 +67,7 @@ WeakestDirection weakest_direction(const MapMatchResult& match,
   weakest.sigma = seen.weakest_sigma();
   weakest.degenerate = !(weakest.sigma <= params.degenerate_translation_sigma);
   weakest.held = weakest.degenerate && match.motion_prior;
+  if (weakest.held) weakest.held_by = prior_sources(match);
   return weakest;
 }
 

@@ -109,6 +109,7 @@ TEST(MotionSensors, MountedImuPredictsTheLidarsMotionSweepAndGravity) {
     ASSERT_TRUE(prediction.motion) << scan;
     ASSERT_TRUE(prediction.sweep) << scan;
     ASSERT_TRUE(prediction.gravity) << scan;
+    EXPECT_TRUE(prediction.motion->from_imu && !prediction.motion->from_wheel) << scan;
     ++predicted;
     const double stamp = scan * kPeriod;
     const Eigen::Isometry3d truth = d.lidar(stamp - kPeriod).inverse() * d.lidar(stamp);
@@ -133,6 +134,12 @@ TEST(MotionSensors, WheelVelocitiesInTheImusFilterAgreeWithIt) {
   drive_expecting_the_true_motion(d, sensors);
   EXPECT_EQ(sensors.status().wheel_slips, 0);
   EXPECT_GT(sensors.status().wheel_scans, 30);
+  MotionSensors again(d.config);
+  int from_both = 0;
+  drive(d, again, 40, [&](int, const MotionPrediction& prediction) {
+    from_both += prediction.motion && prediction.motion->from_imu && prediction.motion->from_wheel;
+  });
+  EXPECT_GT(from_both, 30) << "the priors say both made them";
 }
 
 TEST(MotionSensors, OneWheelSpinningIsASlipByItsYawRate) {
@@ -190,6 +197,7 @@ TEST(MotionSensors, WheelOdometryAloneGivesTheMotionAndLearnsItsScale) {
     if (scan >= 1) {
       ASSERT_TRUE(prediction.motion);
       EXPECT_FALSE(prediction.sweep);
+      EXPECT_TRUE(prediction.motion->from_wheel && !prediction.motion->from_imu);
     }
     if (scan == 0) {
       sensors.update(std::nullopt, Matrix6d::Zero());

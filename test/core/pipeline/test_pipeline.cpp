@@ -155,7 +155,12 @@ TEST(Pipeline, TheWeakestDirectionIsDegenerateBeyondTheThresholdAndSaysWhatHeldI
   EXPECT_TRUE(weakest.degenerate);
   EXPECT_FALSE(weakest.held);
   match.motion_prior = true;
+  match.prior_from_wheel = true;
   EXPECT_TRUE(weakest_direction(match, std::nullopt, params).held);
+  EXPECT_EQ(weakest_direction(match, std::nullopt, params).held_by, "the wheel odometry");
+  match.prior_from_imu = true;
+  EXPECT_EQ(weakest_direction(match, std::nullopt, params).held_by,
+            "the IMU and the wheel odometry");
   // Well fixed everywhere, but the scene says y is its weak direction, fully degenerate: the
   // correspondences along it are not the scene's.
   match.information(3, 3) = 1e6;

@@ -29,6 +29,7 @@ struct MapMatchResult {
   // correspondences at the result, with MappingParams::residual_sigma. Zero when not matched.
   Matrix6d information = Matrix6d::Zero();
   bool motion_prior = false;  // the motion sensors' motion prior took part
+  bool prior_from_imu = false, prior_from_wheel = false;  // what made it (MotionPrior's)
   // What the motion sensors' priors added (the motion prior on the directions it held, gravity
   // on roll and pitch), in the units and frame of `information`.
   Matrix6d prior_information = Matrix6d::Zero();

@@ -26,6 +26,8 @@ struct SweepMotion {
 struct MotionPrior {
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
   Matrix6d information = Matrix6d::Zero();
+  bool from_imu = false;    // the IMU's filter measured it ...
+  bool from_wheel = false;  // ... with, or this alone, the wheel odometry
 };
 
 // Gravity's up direction in the sensor frame, and the covariance of that unit vector.

@@ -68,6 +68,7 @@ struct WeakestDirection {
   double sigma = 0.0;
   bool degenerate = false;
   bool held = false;
+  std::string held_by;  // "the IMU", "the wheel odometry", "the IMU and the wheel odometry"
 };
 WeakestDirection weakest_direction(const MapMatchResult& match,
                                    const std::optional<SceneDegeneration>& scene,
