@@ -4,6 +4,8 @@
 #include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/Marker.h>
 
+#include <cstdio>
+
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/motion_prior_conversions.h"
 #include "adaptive_lego_loam/ros/motion_sensor_conversions.h"
@@ -295,6 +297,7 @@ void FeatureAssociationNode::process(const ros_bridge::StampMatcher::Group& grou
     return;
   }
   times.append(out_.times);
+  if (out_.odometry.registered) remember_weakest(observability(out_.odometry.information));
   if (out_.odometry.rejected) {
     ++rejected_motions_;
     warn_(
@@ -316,7 +319,21 @@ void FeatureAssociationNode::add_diagnostics(ros_bridge::HealthStatus& status) {
     status.raise(ros_bridge::HealthLevel::kWarn, "implausible odometry motions rejected");
   }
   rejected_motions_reported_ = rejected;
+  {
+    std::lock_guard<std::mutex> lock(weakest_mutex_);
+    if (!weakest_text_.empty())
+      status.add("weakest direction (sensor frame, scan-to-scan)", weakest_text_);
+  }
   if (relay_) sensor_diagnostics_->add_to(*relay_, status);
+}
+
+void FeatureAssociationNode::remember_weakest(const Observability& seen) {
+  char text[96];
+  std::snprintf(text, sizeof(text), "x %.2f y %.2f z %.2f, sigma %.3g m",
+                seen.weakest_direction().x(), seen.weakest_direction().y(),
+                seen.weakest_direction().z(), seen.weakest_sigma());
+  std::lock_guard<std::mutex> lock(weakest_mutex_);
+  weakest_text_ = text;
 }
 
 void FeatureAssociationNode::drop(const std::string& reason, const std::string& detail) {

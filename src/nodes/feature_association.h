@@ -15,9 +15,11 @@
 #include <atomic>
 #include <deque>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include "adaptive_lego_loam/core/odometry/lidar_odometry.h"
+#include "adaptive_lego_loam/core/odometry/observability.h"
 #include "adaptive_lego_loam/ros/cloud_info_msg.h"
 #include "adaptive_lego_loam/ros/motion_sensor_diagnostics.h"
 #include "adaptive_lego_loam/ros/motion_sensor_relay.h"
@@ -66,6 +68,7 @@ class FeatureAssociationNode {
   ros_bridge::SegmentedCloudTopics topics() const;
   void publish(const std_msgs::Header& header, const MotionPrediction* prediction);
   void add_diagnostics(ros_bridge::HealthStatus& status);
+  void remember_weakest(const Observability& seen);
 
   Config config_;
   LidarOdometry odometry_;
@@ -78,6 +81,9 @@ class FeatureAssociationNode {
   // diagnostics timer reads it.
   std::atomic<long> rejected_motions_{0};
   long rejected_motions_reported_ = 0;
+  // The last registration's weakest direction (sensor frame) and sigma, for the diagnostics timer.
+  std::mutex weakest_mutex_;
+  std::string weakest_text_;
   std::optional<ros::Time> last_mapped_stamp_;
   ros_bridge::ThrottledWarning warn_;
   ros_bridge::StageSummary summary_;

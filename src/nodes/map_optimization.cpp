@@ -53,6 +53,7 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
       initial_pose_(initial_pose_param(private_nh)),
       save_on_exit_(private_nh.param<std::string>("save_map_on_exit", "")),
       uses_motion_sensors_(private_nh.param("motion_sensors", false)),
+      degenerate_state_(config.mapping.degenerate_translation_sigma),
       frames_(ros_bridge::load_frame_names(private_nh)),
       pairing_("map_optimization", slot_names(uses_motion_sensors_),
                private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
@@ -205,6 +206,7 @@ void MapOptimizationNode::process(const ros_bridge::StampMatcher::Group& group) 
              map_folder_.empty() ? "the map starts over" : "localization starts over");
     std::lock_guard<std::mutex> lock(mapping_mutex_);
     mapping_ = make_mapping();
+    degenerate_state_.reset();
     mapped_scans_ = 0;
     drive_poses_.clear();
     drive_stamps_.clear();
@@ -250,6 +252,8 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
     mapping_->process(features, odometry_pose, group.stamp.toSec(), prior, out_,
                       sensors ? &*sensors : nullptr, scene_);
     sensor_frame_ = odometry->child_frame_id.empty() ? frames_.sensor : odometry->child_frame_id;
+    if (out_.match.matched)
+      degenerate_state_.update(weakest_direction(out_.match, scene_, config_.mapping).sigma);
     ++mapped_scans_;
     if (mapping_->localizing() &&
         (drive_poses_.empty() ||
@@ -360,11 +364,13 @@ void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
     std::snprintf(text, sizeof(text), "x %.2f y %.2f z %.2f, sigma %.3g m", weakest.direction.x(),
                   weakest.direction.y(), weakest.direction.z(), weakest.sigma);
     status.add("weakest direction (sensor frame, LiDAR)", text);
-    if (weakest.degenerate) {
+    if (degenerate_state_.degenerate()) {
+      const std::string holder =
+          !weakest.degenerate ? " (fixed again on the last scan, not yet on enough in a row)"
+          : weakest.held      ? ": held by " + weakest.held_by
+                              : ": nothing holds it, the motion along it is a guess";
       status.raise(ros_bridge::HealthLevel::kWarn,
-                   std::string("degenerate along ") + text +
-                       (weakest.held ? ": held by " + weakest.held_by
-                                     : ": nothing holds it, the motion along it is a guess"));
+                   std::string("degenerate along ") + text + holder);
     }
   }
   if (mapping_->localizing()) {

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_lego_loam/core/pipeline/degeneracy_tracker.h"
 #include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
 #include "adaptive_lego_loam/io/process_memory.h"
 #include "adaptive_lego_loam/ros/node_config.h"
@@ -86,6 +87,7 @@ class MapOptimizationNode {
   MappingOutput out_;
   bool uses_motion_sensors_;  // ~motion_sensors: feature_association sends /motion_priors
   std::optional<SceneDegeneration> scene_;  // the scan being mapped's, from /degeneration
+  DegeneracyTracker degenerate_state_;      // what /diagnostics says, with hysteresis
   ros_bridge::FrameNames frames_;
   std::string sensor_frame_;
   long mapped_scans_ = 0;
