@@ -11,8 +11,9 @@ namespace {
 // The columns found in the header (-1: missing).
 struct Columns {
   int frame = -1, degenerate = -1, matched = -1, covariance = -1;
-  int weak_sigma = -1, weak_x = -1;  // weak_y, weak_z follow weak_x
-  int flag_sigma = -1;               // map_weak_sigma_m, for a run without `degenerate`
+  int weak_sigma = -1, weak_x = -1;       // weak_y, weak_z follow weak_x
+  int flag_sigma = -1;                    // map_weak_sigma_m, for a run without `degenerate`
+  int map_sigma = -1, map_rotation = -1;  // map_weak_sigma_m, map_rotation_sigma_deg
 };
 
 int required(const NumericCsv& table, const std::string& name, const std::string& source) {
@@ -47,6 +48,8 @@ Columns find_columns(const NumericCsv& table, const std::string& source, RunDege
   columns.frame = required(table, "frame", source);
   columns.degenerate = table.column("degenerate");
   columns.matched = table.column("matched");
+  columns.map_sigma = table.column("map_weak_sigma_m");
+  columns.map_rotation = table.column("map_rotation_sigma_deg");
   run.flag_source = columns.degenerate >= 0 ? FlagSource::kPublished : FlagSource::kCorrespondences;
   if (columns.degenerate < 0) columns.flag_sigma = required(table, "map_weak_sigma_m", source);
   columns.covariance = covariance_columns(table, source);
@@ -104,7 +107,12 @@ RunDegeneration converted(const NumericCsv& table, const std::string& source,
     // A run without the flag: map_optimization's test (pipeline.cpp) on the correspondences'.
     scan.degenerate = columns.degenerate >= 0 ? flag(row[columns.degenerate], place, "degenerate")
                                               : !(row[columns.flag_sigma] <= degenerate_sigma_m);
-    if (columns.matched >= 0) scan.matched = flag(row[columns.matched], place, "matched");
+    if (columns.matched >= 0) {
+      scan.matched = flag(row[columns.matched], place, "matched");
+    } else if (columns.map_sigma >= 0 && columns.map_rotation >= 0) {
+      // An unmatched scan's correspondences' information is zero (MapMatchResult): nothing fixed.
+      scan.matched = !(std::isinf(row[columns.map_sigma]) && std::isinf(row[columns.map_rotation]));
+    }
     read_uncertainty(row, columns, place, scan);
   }
   return run;

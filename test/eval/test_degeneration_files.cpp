@@ -104,13 +104,17 @@ TEST(DegenerationFile, AnOldRunIsFlaggedByItsCorrespondencesSigmaBeyondTheThresh
   EXPECT_EQ(run.uncertainty_source, UncertaintySource::kCorrespondenceWeakest);
   ASSERT_EQ(run.scans.size(), 3u);
   EXPECT_TRUE(run.scans[0].degenerate);
+  EXPECT_EQ(run.scans[0].matched, false);  // its correspondences fixed nothing
   EXPECT_TRUE(run.scans[1].degenerate);
+  EXPECT_EQ(run.scans[1].matched, true);
   EXPECT_FALSE(run.scans[2].degenerate);
-  EXPECT_FALSE(run.scans[2].matched);
   EXPECT_FALSE(run.scans[2].translation_covariance);
   EXPECT_EQ(run.scans[1].weak_sigma_m, 0.2);
   EXPECT_EQ(run.scans[2].weak_direction, Eigen::Vector3d::UnitY());
   EXPECT_FALSE(parse_degeneration_csv(text, "deg.csv", 0.3).scans[1].degenerate);
+  const std::string without_rotation =
+      "frame,map_weak_sigma_m,map_weak_x,map_weak_y,map_weak_z\n0,inf,0,0,1\n";
+  EXPECT_FALSE(parse_degeneration_csv(without_rotation, "d", 0.1).scans[0].matched);
 }
 
 TEST(DegenerationFile, BadInputNamesTheFileTheLineAndWhatWasExpected) {

@@ -26,7 +26,10 @@ const char* to_string(UncertaintySource source);
 struct RunScan {
   int frame = 0;
   bool degenerate = false;
-  std::optional<bool> matched;  // when the run says (unmatched: its pose is the guess)
+  // Whether the scan matched the map (unmatched: its pose is the guess): the run's `matched`, or
+  // in an older run, whether its correspondences fixed anything (map_weak_sigma_m and
+  // map_rotation_sigma_deg not both inf); empty when neither is there.
+  std::optional<bool> matched;
   // The translation's marginal covariance (m^2, sensor frame) with kCovariance; otherwise the
   // direction of its largest variance and its sigma (m, inf when nothing fixes it).
   std::optional<Eigen::Matrix3d> translation_covariance;
