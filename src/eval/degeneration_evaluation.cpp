@@ -39,6 +39,7 @@ DegenerationEvaluation evaluate_degeneration(const std::vector<TrueObservability
   DegenerationEvaluation evaluation;
   evaluation.flag_source = run.flag_source;
   evaluation.uncertainty_source = run.uncertainty_source;
+  evaluation.degenerate_sigma_m = degenerate_sigma_m;
   std::vector<bool> true_flags, run_flags;
   std::vector<double> values;
   for (const RunScan& scan : run.scans) {

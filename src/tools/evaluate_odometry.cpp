@@ -151,10 +151,10 @@ void print_drift(const EndDrift& drift, const std::optional<Baseline>& baseline)
       "cross-track %", [](const EndDrift& d) { return d.cross_track_percent; }, "%.3f");
 }
 
-json to_json(const DegenerationEvaluation& evaluation, double degenerate_sigma_m) {
+json to_json(const DegenerationEvaluation& evaluation) {
   const DetectionScore& detection = evaluation.detection;
   const NeesSummary& nees = evaluation.nees;
-  return {{"degenerate_translation_sigma_m", degenerate_sigma_m},
+  return {{"degenerate_translation_sigma_m", evaluation.degenerate_sigma_m},
           {"scans", evaluation.scans_compared},
           {"flag_source", to_string(evaluation.flag_source)},
           {"truly_degenerate", evaluation.truly_degenerate},
@@ -304,10 +304,10 @@ int main(int argc, char** argv) {
       baseline->drift = end_drift(baseline->poses, truth_used);
     }
     std::optional<DegenerationEvaluation> degeneration;
-    const double degenerate_sigma_m =
-        config_paths.empty() ? MappingParams{}.degenerate_translation_sigma
-                             : load_config(config_paths).mapping.degenerate_translation_sigma;
     if (!observability_path.empty()) {
+      const double degenerate_sigma_m =
+          config_paths.empty() ? MappingParams{}.degenerate_translation_sigma
+                               : load_config(config_paths).mapping.degenerate_translation_sigma;
       // The truth first: its errors before the run's.
       const std::vector<TrueObservability> truth = read_observability_csv(observability_path);
       const RunDegeneration run = read_degeneration_csv(degeneration_path, degenerate_sigma_m);
@@ -315,7 +315,7 @@ int main(int argc, char** argv) {
     }
     if (!json_path.empty()) {
       json document = to_json(evaluation);
-      if (degeneration) document["degeneration"] = to_json(*degeneration, degenerate_sigma_m);
+      if (degeneration) document["degeneration"] = to_json(*degeneration);
       if (baseline) {
         document["baseline"] = {{"name", baseline->name}, {"drift", drift_json(baseline->drift)}};
         if (baseline->name == kConstantVelocity)

@@ -64,6 +64,7 @@ TEST(DegenerationEvaluation, ScoresTheFlagAndTheCovarianceScanByScan) {
   drive(count, covariance, estimate, ground_truth);
   const DegenerationEvaluation evaluation =
       evaluate_degeneration(truth(count, 500), run(flags, covariance), estimate, ground_truth, 0.1);
+  EXPECT_EQ(evaluation.degenerate_sigma_m, 0.1);
   EXPECT_EQ(evaluation.scans_compared, count);
   EXPECT_EQ(evaluation.truly_degenerate, 500);
   EXPECT_EQ(evaluation.flagged, 500);

@@ -27,7 +27,8 @@ namespace adaptive_lego_loam {
 struct DegenerationEvaluation {
   FlagSource flag_source = FlagSource::kPublished;
   UncertaintySource uncertainty_source = UncertaintySource::kCovariance;
-  int scans_compared = 0;  // in both files (and matched, when the run says)
+  double degenerate_sigma_m = 0.0;  // the threshold the flags were made with
+  int scans_compared = 0;           // in both files (and matched, when the run says)
   int truly_degenerate = 0;
   int flagged = 0;
   DetectionScore detection;
