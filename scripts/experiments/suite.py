@@ -91,6 +91,9 @@ DEGENERATE = ["tunnel", "bare_tunnel", "corridor"]
 SCENARIO_SENSORS = {"corridor": ["vlp16"]}
 
 
+# The runs whose degenerate flag and covariance are scored against the simulator's truth.
+DEGENERATION_METHODS = ["adaptive", "adaptive + IMU + wheel"]
+
 SUITE_SEEDS = [1, 2, 3, 23, 24, 25]  # 4-22 chose the filter's settings (METHOD.md steps 7-8)
 
 
@@ -308,6 +311,30 @@ class Runner:
                          "drift": metrics["baseline"]["drift"]})
         return rows
 
+    def degeneration_scores(self, simulated):
+        """The degenerate flag and the published covariance of the adaptive runs, LiDAR alone
+        and with both motion sensors, against each drive's true observability (evaluate_odometry
+        --observability --degeneration), from the runs' outputs as they are."""
+        tasks = []
+        for run in simulated:
+            if run["method"] not in DEGENERATION_METHODS:
+                continue
+            out = pathlib.Path(run["output"])
+            sequence = self.drive_folder(run["scenario"], run["sensor"], run["seed"])
+            result = out.parent / f"{out.name}.degeneration.json"
+            command = [self.bin / "evaluate_odometry", "--gt", sequence / "poses.txt",
+                       "--est", out / "poses_kitti.txt", "--observability",
+                       sequence / "observability.csv", "--degeneration",
+                       out / "degeneration.csv", "--config",
+                       self.root / "config" / SENSORS[run["sensor"]], "--json", result]
+            tasks.append((f"degeneration {out.parent.name} {run['method']}",
+                          lambda c=command, r=result, k=run: (k, self.run_json(c, r))))
+        rows = []
+        for run, metrics in self.parallel(tasks):
+            rows.append({key: run[key] for key in ("scenario", "sensor", "seed", "method")} |
+                        {"degeneration": metrics["degeneration"]})
+        return rows
+
     # -- real KITTI ------------------------------------------------------------------------
 
     def real_kitti(self):
@@ -418,6 +445,7 @@ def main():
     try:
         results["simulated"] = runner.simulated_suite(args.quick)
         results["dead_reckoning"] = runner.dead_reckoning(results["simulated"])
+        results["degeneration_scores"] = runner.degeneration_scores(results["simulated"])
         results["real"] = runner.real_kitti()
         results["clustering"] = runner.clustering(args.quick)
         results["degeneration"] = runner.degeneration(args.quick)

@@ -1,6 +1,8 @@
 // Compares an estimated trajectory with ground truth (both KITTI pose files) and prints the KITTI
 // segment errors, the RPE, the ATE and the drift at the end of docs/METHOD.md, optionally beside a
-// dead-reckoning baseline's drift; --json writes the same numbers.
+// dead-reckoning baseline's drift; with a simulated sequence's observability.csv and the run's
+// degeneration.csv, how well its degenerate flag and covariance match the truth; --json writes
+// the same numbers.
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -10,6 +12,7 @@
 #include <fstream>
 #include <string>
 
+#include "adaptive_lego_loam/eval/degeneration_evaluation.h"
 #include "adaptive_lego_loam/eval/metrics.h"
 #include "adaptive_lego_loam/io/io_error.h"
 #include "adaptive_lego_loam/io/motion_sensor_files.h"
@@ -148,6 +151,56 @@ void print_drift(const EndDrift& drift, const std::optional<Baseline>& baseline)
       "cross-track %", [](const EndDrift& d) { return d.cross_track_percent; }, "%.3f");
 }
 
+json to_json(const DegenerationEvaluation& evaluation) {
+  const DetectionScore& detection = evaluation.detection;
+  const NeesSummary& nees = evaluation.nees;
+  return {{"degenerate_translation_sigma_m", evaluation.degenerate_sigma_m},
+          {"scans", evaluation.scans_compared},
+          {"flag_source", to_string(evaluation.flag_source)},
+          {"truly_degenerate", evaluation.truly_degenerate},
+          {"flagged", evaluation.flagged},
+          {"precision", optional_number(detection.precision)},
+          {"recall", optional_number(detection.recall)},
+          {"true_positives", detection.true_positives},
+          {"false_positives", detection.false_positives},
+          {"false_negatives", detection.false_negatives},
+          {"true_negatives", detection.true_negatives},
+          {"nees",
+           {{"uncertainty_source", to_string(evaluation.uncertainty_source)},
+            {"dof", nees.dof},
+            {"bounds_95", {nees.bounds.lower, nees.bounds.upper}},
+            {"scans", nees.scans},
+            {"below", nees.below},
+            {"within", nees.within},
+            {"above", nees.above},
+            {"share_within", optional_number(nees.share_within)},
+            {"median", optional_number(nees.median_nees)},
+            {"variance_scale", optional_number(nees.variance_scale)}}}};
+}
+
+std::string share(int count, int total) {
+  return total > 0 ? cell(100.0 * count / total, "%.1f %%") : "n/a";
+}
+
+void print(const DegenerationEvaluation& evaluation) {
+  const DetectionScore& detection = evaluation.detection;
+  std::printf(
+      "degenerate flag    precision %s recall %s (%d scans: %d truly degenerate, %d "
+      "flagged; TP %d FP %d FN %d TN %d; flag: %s)\n",
+      cell(detection.precision, "%.3f").c_str(), cell(detection.recall, "%.3f").c_str(),
+      evaluation.scans_compared, evaluation.truly_degenerate, evaluation.flagged,
+      detection.true_positives, detection.false_positives, detection.false_negatives,
+      detection.true_negatives, to_string(evaluation.flag_source));
+  const NeesSummary& nees = evaluation.nees;
+  std::printf(
+      "covariance NEES    %s of %d scans within [%.3g, %.3g] (%d DOF, 95 %%), %s above, "
+      "%s below; median %s, %s x chi-square's (%s)\n",
+      share(nees.within, nees.scans).c_str(), nees.scans, nees.bounds.lower, nees.bounds.upper,
+      nees.dof, share(nees.above, nees.scans).c_str(), share(nees.below, nees.scans).c_str(),
+      cell(nees.median_nees, "%.3g").c_str(), cell(nees.variance_scale, "%.3g").c_str(),
+      to_string(evaluation.uncertainty_source));
+}
+
 void write_json(const std::string& path, const json& document) {
   std::ofstream file(path, std::ios::trunc);
   if (!file) throw IoError(path + ": cannot open for writing");
@@ -165,6 +218,7 @@ int main(int argc, char** argv) {
       "RMSE (m, after a rigid alignment). A shorter estimate (interrupted run) is compared over "
       "its frames."};
   std::string gt_path, estimate_path, calib_path, json_path, times_path;
+  std::string observability_path, degeneration_path;
   std::vector<std::string> baseline_arguments, config_paths;
   app.add_option("--gt", gt_path, "ground-truth poses (KITTI format)")->required();
   app.add_option("--est", estimate_path, "estimated poses (KITTI format, lidar frame)")->required();
@@ -185,6 +239,14 @@ int main(int argc, char** argv) {
                  "configs whose wheel_odometry section (extrinsic, time offset, max_gap_s) the "
                  "wheel baseline uses, later ones overriding (as run_sequence --config)")
       ->expected(1, -1);
+  app.add_option("--observability", observability_path,
+                 "a simulated sequence's observability.csv (the true information per scan): "
+                 "scores the run's degenerate flag and covariance, with --degeneration");
+  app.add_option("--degeneration", degeneration_path,
+                 "the run's degeneration.csv (run_sequence): its degenerate flag, scored by "
+                 "precision and recall against the truth, and its published covariance, by the "
+                 "share of scans whose NEES is within the chi-square's 95 % bounds; --config's "
+                 "mapping.degenerate_translation_sigma is the threshold");
   if (const auto status = tools::parse_command_line(app, argc, argv, "evaluate_odometry")) {
     return *status;
   }
@@ -194,8 +256,14 @@ int main(int argc, char** argv) {
   if (!times_path.empty() && baseline_arguments.empty()) {
     return tools::usage_error("evaluate_odometry", "--times applies to --baseline only");
   }
-  if (!config_paths.empty() && (baseline_arguments.empty() || baseline_arguments[0] != kWheel)) {
-    return tools::usage_error("evaluate_odometry", "--config applies to --baseline wheel only");
+  if (observability_path.empty() != degeneration_path.empty()) {
+    return tools::usage_error("evaluate_odometry",
+                              "--observability and --degeneration go together");
+  }
+  const bool wheel_baseline_asked = !baseline_arguments.empty() && baseline_arguments[0] == kWheel;
+  if (!config_paths.empty() && !wheel_baseline_asked && observability_path.empty()) {
+    return tools::usage_error("evaluate_odometry",
+                              "--config applies to --baseline wheel and --observability only");
   }
   return tools::run_job("evaluate_odometry", [&] {
     std::vector<Eigen::Isometry3d> ground_truth = read_kitti_poses(gt_path);
@@ -235,8 +303,19 @@ int main(int argc, char** argv) {
       }
       baseline->drift = end_drift(baseline->poses, truth_used);
     }
+    std::optional<DegenerationEvaluation> degeneration;
+    if (!observability_path.empty()) {
+      const double degenerate_sigma_m =
+          config_paths.empty() ? MappingParams{}.degenerate_translation_sigma
+                               : load_config(config_paths).mapping.degenerate_translation_sigma;
+      // The truth first: its errors before the run's.
+      const std::vector<TrueObservability> truth = read_observability_csv(observability_path);
+      const RunDegeneration run = read_degeneration_csv(degeneration_path, degenerate_sigma_m);
+      degeneration = evaluate_degeneration(truth, run, estimate, ground_truth, degenerate_sigma_m);
+    }
     if (!json_path.empty()) {
       json document = to_json(evaluation);
+      if (degeneration) document["degeneration"] = to_json(*degeneration);
       if (baseline) {
         document["baseline"] = {{"name", baseline->name}, {"drift", drift_json(baseline->drift)}};
         if (baseline->name == kConstantVelocity)
@@ -246,6 +325,7 @@ int main(int argc, char** argv) {
     }
     print(evaluation);
     print_drift(evaluation.drift, baseline);
+    if (degeneration) print(*degeneration);
     return tools::kExitOk;
   });
 }

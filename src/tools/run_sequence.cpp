@@ -182,7 +182,9 @@ class Outputs {
                               "fragment_smoothness,structure_share,every_cluster_kept,"
                               "map_weak_sigma_m,map_weak_x,map_weak_y,map_weak_z,"
                               "map_rotation_sigma_deg,estimate_weak_sigma_m,estimate_weak_x,"
-                              "estimate_weak_y,estimate_weak_z,motion_prior\n";
+                              "estimate_weak_y,estimate_weak_z,motion_prior,lidar_weak_sigma_m,"
+                              "degenerate,matched"
+                           << covariance_header() << "\n";
     localization_.stream() << "frame,state,match_ratio,alignment,inlier_ratio,inlier_mse\n";
   }
 
@@ -235,7 +237,8 @@ class Outputs {
     loops_out << "," << int(closed) << "\n";
   }
 
-  void add(const FrameResult& frame, const AmbientFilterResult& filtered) {
+  void add(const FrameResult& frame, const AmbientFilterResult& filtered,
+           const MappingParams& mapping) {
     std::ofstream& timing = timing_.stream();
     timing << frame.frame;
     for (const auto& stage : kStages)
@@ -262,7 +265,8 @@ class Outputs {
     degeneration_.stream() << "," << known.weakest_sigma() << "," << known.weakest_direction().x()
                            << "," << known.weakest_direction().y() << ","
                            << known.weakest_direction().z() << ","
-                           << int(frame.mapping.motion_prior) << "\n";
+                           << int(frame.mapping.motion_prior);
+    add_flag_and_covariance(frame, scene_degeneration(filtered), mapping);
     stamps.push_back(frame.stamp);
     for (const auto& [stage, ms] : frame.times.entries())
       stage_ms[stage].push_back(ms);
@@ -274,6 +278,39 @@ class Outputs {
   std::vector<double> total_ms;
 
  private:
+  // covariance_00 ... covariance_55: the published pose covariance's entries, row by row.
+  static std::string covariance_header() {
+    std::string header;
+    for (int row = 0; row < 6; ++row)
+      for (int column = 0; column < 6; ++column)
+        header += ",covariance_" + std::to_string(row) + std::to_string(column);
+    return header;
+  }
+
+  // The degenerate flag as map_optimization raises it (its weakest direction's sigma), whether the
+  // scan matched the map, and the covariance published with the mapped pose (as
+  // map_optimization's on /aft_mapped_to_init): what evaluate_odometry scores against the truth.
+  void add_flag_and_covariance(const FrameResult& frame,
+                               const std::optional<SceneDegeneration>& scene,
+                               const MappingParams& mapping) {
+    std::ofstream& out = degeneration_.stream();
+    const WeakestDirection weakest = weakest_direction(frame.mapping, scene, mapping);
+    out << "," << weakest.sigma << "," << int(weakest.degenerate) << ","
+        << int(frame.mapping.matched);
+    const Matrix6d covariance = covariance_from_information(
+        frame.mapping.matched ? pose_information(frame.mapping, scene) : Matrix6d::Zero());
+    // Every digit: along a free direction the variance is 1e4 m^2 beside 1e-6 m^2 along the
+    // fixed ones, and the scoring inverts it.
+    char entry[32];
+    for (int row = 0; row < 6; ++row) {
+      for (int column = 0; column < 6; ++column) {
+        std::snprintf(entry, sizeof(entry), ",%.17g", covariance(row, column));
+        out << entry;
+      }
+    }
+    out << "\n";
+  }
+
   // The folder made first: the files' temporaries go beside their places.
   static std::string prepared(const std::string& dir, const std::string& name) {
     std::error_code error;
@@ -439,7 +476,7 @@ int run(const Options& options) {
       motion_gated_scans += result.motion_gated;
       odometry_rejected_motions += result.odometry.rejected;
       localization.add(result.localization);
-      outputs.add(result, pipeline->filter_result());
+      outputs.add(result, pipeline->filter_result(), config.mapping);
       outputs.add_loop(result.frame, result.loop, result.loop_closed, pipeline->keyframes());
       outputs.add_localization(result.frame, result.localization);
       progress.update(++frames);

@@ -113,3 +113,18 @@ TEST(CommandLines, AnUnknownBaselineIsAUsageErrorNamingTheKnownOnes) {
   EXPECT_EQ(status, 0) << output;
   EXPECT_NE(output.find("reach ratio"), std::string::npos) << output;
 }
+
+// The degeneration's scoring takes both files; a bad one exits 1 with one line naming it.
+TEST(CommandLines, EvaluateOdometryScoresTheDegenerationFromBothFilesOnly) {
+  const std::string poses = std::string(TEST_DATA_DIR) + "/kitti_seq07/poses.txt";
+  const std::string evaluate = tool("evaluate_odometry") + " --gt " + poses + " --est " + poses;
+  const auto [alone, alone_output] = stderr_of(evaluate + " --observability obs.csv");
+  EXPECT_EQ(alone, 2) << alone_output;
+  EXPECT_NE(alone_output.find("--degeneration"), std::string::npos) << alone_output;
+  // Not an observability.csv: the poses, space-separated.
+  const auto [status, output] =
+      stderr_of(evaluate + " --observability " + poses + " --degeneration /nonexistent/d.csv");
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_EQ(lines_of(output), 1) << output;
+  EXPECT_NE(output.find(poses + ":1: column 1: expected a number"), std::string::npos) << output;
+}

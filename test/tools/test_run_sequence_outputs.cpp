@@ -1,18 +1,22 @@
 // run_sequence's outputs: a run that fails leaves an earlier run's files as they were; with
 // --skip-bad-scans an unreadable scan is skipped and counted; a map folder that cannot take the
-// map stops the run before it starts.
+// map stops the run before it starts; degeneration.csv holds what the degeneration is scored on.
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
+#include "adaptive_lego_loam/eval/degeneration_file.h"
+#include "adaptive_lego_loam/eval/numeric_csv.h"
 #include "support/run_command.h"
 #include "support/temp_files.h"
 
+using namespace adaptive_lego_loam;
 using adaptive_lego_loam::test::run_command;
 using adaptive_lego_loam::test::temp_path;
 namespace fs = std::filesystem;
@@ -157,4 +161,32 @@ TEST(RunSequenceOutputs, AConfigThatDoesNotFitTheScansIsSaid) {
   ASSERT_EQ(kitti_status, 0) << kitti_output;
   EXPECT_EQ(kitti_output.find("does not fit"), std::string::npos) << kitti_output;
   EXPECT_TRUE(nlohmann::json::parse(read_file(fitting / "summary.json"))["config_fit"].empty());
+}
+
+// degeneration.csv ends with map_optimization's flag, whether the scan matched and the published
+// covariance (what evaluate_odometry --degeneration scores): the flag is its sigma beyond the
+// config's 0.1 m, the first scan (no map yet) unmatched, the covariance symmetric and positive.
+TEST(RunSequenceOutputs, DegenerationEndsWithTheFlagAndThePublishedCovariance) {
+  const fs::path out = temp_path("outputs_degeneration");
+  fs::remove_all(out);
+  const std::string input = std::string(TEST_DATA_DIR) + "/kitti_seq07";
+  ASSERT_EQ(run_command(run_sequence("--input " + input + " --output " + out.string())).first, 0);
+  const std::string path = (out / "degeneration.csv").string();
+  const NumericCsv table = read_csv_with_header(path);
+  const std::vector<std::string> last(table.columns.end() - 39, table.columns.end() - 36);
+  EXPECT_EQ(last, (std::vector<std::string>{"lidar_weak_sigma_m", "degenerate", "matched"}));
+  EXPECT_EQ(table.columns.back(), "covariance_55");
+  const RunDegeneration run = read_degeneration_csv(path, 0.1);
+  ASSERT_EQ(run.scans.size(), 5u);
+  EXPECT_EQ(run.flag_source, FlagSource::kPublished);
+  EXPECT_EQ(run.uncertainty_source, UncertaintySource::kCovariance);
+  EXPECT_EQ(run.scans[0].matched, false);
+  const int sigma = table.column("lidar_weak_sigma_m");
+  for (std::size_t i = 1; i < run.scans.size(); ++i) {
+    EXPECT_EQ(run.scans[i].matched, true) << i;
+    EXPECT_EQ(run.scans[i].degenerate, table.rows[i][sigma] > 0.1) << i;
+    const Eigen::Matrix3d& covariance = *run.scans[i].translation_covariance;
+    EXPECT_TRUE(covariance.isApprox(covariance.transpose(), 1e-12)) << i;
+    EXPECT_GT(covariance.llt().matrixL().toDenseMatrix().diagonal().minCoeff(), 0.0) << i;
+  }
 }
