@@ -320,7 +320,7 @@ void MapOptimizationNode::publish(const ros::Time& stamp) {
   map_header.stamp = stamp;
   map_header.frame_id = frames_.map;
   nav_msgs::Odometry mapped = ros_bridge::odometry_to_ros(out_.pose, map_header, sensor_frame_);
-  const Matrix6d covariance = mapped_pose_covariance(out_, scene_);
+  const Matrix6d covariance = mapped_pose_covariance(out_.match, starts_map(out_), scene_);
   ros_bridge::set_pose_covariance(covariance, mapped.pose);
   // The mapped motion, without the map frame's jumps: feature_association's motion model.
   if (out_.motion && last_stamp_ && stamp > *last_stamp_) {

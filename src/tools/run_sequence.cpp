@@ -184,7 +184,9 @@ class Outputs {
                               "map_rotation_sigma_deg,estimate_weak_sigma_m,estimate_weak_x,"
                               "estimate_weak_y,estimate_weak_z,motion_prior,lidar_weak_sigma_m,"
                               "degenerate,matched"
-                           << covariance_header() << "\n";
+                           << covariance_header()
+                           << ",odometry_weak_sigma_m,odometry_weak_x,odometry_weak_y,"
+                              "odometry_weak_z\n";
     localization_.stream() << "frame,state,match_ratio,alignment,inlier_ratio,inlier_mse\n";
   }
 
@@ -267,6 +269,7 @@ class Outputs {
                            << known.weakest_direction().z() << ","
                            << int(frame.mapping.motion_prior);
     add_flag_and_covariance(frame, scene_degeneration(filtered), mapping);
+    add_odometry(frame);
     stamps.push_back(frame.stamp);
     for (const auto& [stage, ms] : frame.times.entries())
       stage_ms[stage].push_back(ms);
@@ -278,6 +281,7 @@ class Outputs {
   std::vector<double> total_ms;
 
  private:
+  bool first_frame_ = true;
   // covariance_00 ... covariance_55: the published pose covariance's entries, row by row.
   static std::string covariance_header() {
     std::string header;
@@ -297,8 +301,10 @@ class Outputs {
     const WeakestDirection weakest = weakest_direction(frame.mapping, scene, mapping);
     out << "," << weakest.sigma << "," << int(weakest.degenerate) << ","
         << int(frame.mapping.matched);
-    const Matrix6d covariance = covariance_from_information(
-        frame.mapping.matched ? pose_information(frame.mapping, scene) : Matrix6d::Zero());
+    // The first scan starts the map (zero covariance) unless a saved map is localized on.
+    const Matrix6d covariance =
+        mapped_pose_covariance(frame.mapping, first_frame_ && !frame.localization, scene);
+    first_frame_ = false;
     // Every digit: along a free direction the variance is 1e4 m^2 beside 1e-6 m^2 along the
     // fixed ones, and the scoring inverts it.
     char entry[32];
@@ -308,7 +314,17 @@ class Outputs {
         out << entry;
       }
     }
-    out << "\n";
+  }
+
+  // The scan-to-scan registration's weakest translation direction and its sigma
+  // (OdometryResult::information: not discounted along the scene's weak direction); infinite
+  // when the scan was not registered.
+  void add_odometry(const FrameResult& frame) {
+    const Observability seen =
+        observability(frame.odometry.registered ? frame.odometry.information : Matrix6d::Zero());
+    degeneration_.stream() << "," << seen.weakest_sigma() << "," << seen.weakest_direction().x()
+                           << "," << seen.weakest_direction().y() << ","
+                           << seen.weakest_direction().z() << "\n";
   }
 
   // The folder made first: the files' temporaries go beside their places.

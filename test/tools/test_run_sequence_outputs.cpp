@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -165,7 +166,8 @@ TEST(RunSequenceOutputs, AConfigThatDoesNotFitTheScansIsSaid) {
 
 // degeneration.csv ends with map_optimization's flag, whether the scan matched and the published
 // covariance (what evaluate_odometry --degeneration scores): the flag is its sigma beyond the
-// config's 0.1 m, the first scan (no map yet) unmatched, the covariance symmetric and positive.
+// config's 0.1 m, the first scan (no map yet) unmatched, the covariance symmetric and positive;
+// then the scan-to-scan registration's weakest direction (none before the second scan).
 TEST(RunSequenceOutputs, DegenerationEndsWithTheFlagAndThePublishedCovariance) {
   const fs::path out = temp_path("outputs_degeneration");
   fs::remove_all(out);
@@ -173,9 +175,14 @@ TEST(RunSequenceOutputs, DegenerationEndsWithTheFlagAndThePublishedCovariance) {
   ASSERT_EQ(run_command(run_sequence("--input " + input + " --output " + out.string())).first, 0);
   const std::string path = (out / "degeneration.csv").string();
   const NumericCsv table = read_csv_with_header(path);
-  const std::vector<std::string> last(table.columns.end() - 39, table.columns.end() - 36);
-  EXPECT_EQ(last, (std::vector<std::string>{"lidar_weak_sigma_m", "degenerate", "matched"}));
-  EXPECT_EQ(table.columns.back(), "covariance_55");
+  const std::vector<std::string> flag(table.columns.end() - 43, table.columns.end() - 40);
+  EXPECT_EQ(flag, (std::vector<std::string>{"lidar_weak_sigma_m", "degenerate", "matched"}));
+  EXPECT_EQ(*(table.columns.end() - 5), "covariance_55");
+  const std::vector<std::string> odometry(table.columns.end() - 4, table.columns.end());
+  EXPECT_EQ(odometry, (std::vector<std::string>{"odometry_weak_sigma_m", "odometry_weak_x",
+                                                "odometry_weak_y", "odometry_weak_z"}));
+  const int odometry_sigma = table.column("odometry_weak_sigma_m");
+  EXPECT_TRUE(std::isinf(table.rows[0][odometry_sigma]));
   const RunDegeneration run = read_degeneration_csv(path, 0.1);
   ASSERT_EQ(run.scans.size(), 5u);
   EXPECT_EQ(run.flag_source, FlagSource::kPublished);
@@ -185,6 +192,7 @@ TEST(RunSequenceOutputs, DegenerationEndsWithTheFlagAndThePublishedCovariance) {
   for (std::size_t i = 1; i < run.scans.size(); ++i) {
     EXPECT_EQ(run.scans[i].matched, true) << i;
     EXPECT_EQ(run.scans[i].degenerate, table.rows[i][sigma] > 0.1) << i;
+    EXPECT_LT(table.rows[i][odometry_sigma], 0.1) << "KITTI's street fixes the motion, " << i;
     const Eigen::Matrix3d& covariance = *run.scans[i].translation_covariance;
     EXPECT_TRUE(covariance.isApprox(covariance.transpose(), 1e-12)) << i;
     EXPECT_GT(covariance.llt().matrixL().toDenseMatrix().diagonal().minCoeff(), 0.0) << i;

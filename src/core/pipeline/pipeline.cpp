@@ -39,12 +39,15 @@ Matrix6d pose_information(const MapMatchResult& match,
   return sensor_feedback_information(match, scene) + match.prior_information;
 }
 
-Matrix6d mapped_pose_covariance(const MappingOutput& mapped,
+Matrix6d mapped_pose_covariance(const MapMatchResult& match, bool starts_map,
                                 const std::optional<SceneDegeneration>& scene) {
-  const bool starts_map = !mapped.motion && !mapped.localization;
   if (starts_map) return Matrix6d::Zero();
-  return covariance_from_information(mapped.match.matched ? pose_information(mapped.match, scene)
-                                                          : Matrix6d::Zero());
+  return covariance_from_information(match.matched ? pose_information(match, scene)
+                                                   : Matrix6d::Zero());
+}
+
+bool starts_map(const MappingOutput& mapped) {
+  return !mapped.motion && !mapped.localization;
 }
 
 namespace {

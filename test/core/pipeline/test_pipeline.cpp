@@ -174,20 +174,22 @@ TEST(Pipeline, TheWeakestDirectionIsDegenerateBeyondTheThresholdAndSaysWhatHeldI
 // The first scan defines the map frame: its pose is exact. A scan not matched keeps its guess,
 // known to nothing; a matched one is known as its correspondences (and priors) say.
 TEST(Pipeline, TheMappedPoseCovarianceIsZeroWhereTheMapStartsAndUnknownWhereUnmatched) {
+  const auto covariance = [](const MappingOutput& mapped) {
+    return mapped_pose_covariance(mapped.match, starts_map(mapped), std::nullopt);
+  };
   MappingOutput first;
-  EXPECT_TRUE(mapped_pose_covariance(first, std::nullopt).isZero());
+  EXPECT_TRUE(covariance(first).isZero());
 
   MappingOutput unmatched;
   unmatched.motion = Eigen::Isometry3d::Identity();
-  EXPECT_TRUE(mapped_pose_covariance(unmatched, std::nullopt).isApprox(1e4 * Matrix6d::Identity()));
+  EXPECT_TRUE(covariance(unmatched).isApprox(1e4 * Matrix6d::Identity()));
 
   MappingOutput localizing = first;  // a saved map's frame: its first scan's pose is a guess
   localizing.localization = LocalizationStatus();
-  EXPECT_TRUE(
-      mapped_pose_covariance(localizing, std::nullopt).isApprox(1e4 * Matrix6d::Identity()));
+  EXPECT_TRUE(covariance(localizing).isApprox(1e4 * Matrix6d::Identity()));
 
   MappingOutput matched = unmatched;
   matched.match.matched = true;
   matched.match.information = 1e4 * Matrix6d::Identity();  // 1 cm, 0.6 deg
-  EXPECT_TRUE(mapped_pose_covariance(matched, std::nullopt).isApprox(1e-4 * Matrix6d::Identity()));
+  EXPECT_TRUE(covariance(matched).isApprox(1e-4 * Matrix6d::Identity()));
 }

@@ -56,10 +56,12 @@ Matrix6d sensor_feedback_information(const MapMatchResult& match,
 Matrix6d pose_information(const MapMatchResult& match,
                           const std::optional<SceneDegeneration>& scene);
 // The covariance published with a mapped pose (covariance_from_information of pose_information):
-// zero on the scan that starts a map, which defines the map frame; the unknown variance wherever
-// a scan was not matched (the pose is the guess).
-Matrix6d mapped_pose_covariance(const MappingOutput& mapped,
+// zero on the scan that starts a map (`starts_map`), which defines the map frame; the unknown
+// variance wherever a scan was not matched (the pose is the guess).
+Matrix6d mapped_pose_covariance(const MapMatchResult& match, bool starts_map,
                                 const std::optional<SceneDegeneration>& scene);
+// Whether a mapped scan started the map: the first one mapping (not localizing) saw.
+bool starts_map(const MappingOutput& mapped);
 // The translation direction a matched scan's correspondences fix worst (sensor frame) and their
 // 1-sigma along it (m; the scene's weak direction counted as above): degenerate beyond
 // mapping.degenerate_translation_sigma, and then held or not by the motion sensors' prior.
