@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "adaptive_lego_loam/eval/numeric_csv.h"
+#include "adaptive_lego_loam/io/numeric_csv.h"
 #include "adaptive_lego_loam/io/io_error.h"
 
 namespace adaptive_lego_loam {

@@ -1,11 +1,10 @@
 #include "adaptive_lego_loam/io/motion_sensor_files.h"
 
 #include <charconv>
-#include <cstdlib>
 #include <fstream>
-#include <sstream>
 
 #include "adaptive_lego_loam/io/io_error.h"
+#include "adaptive_lego_loam/io/numeric_csv.h"
 
 namespace adaptive_lego_loam {
 namespace {
@@ -14,69 +13,6 @@ const char* const kImuHeader = "time,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_
 const char* const kWheelHeader =
     "time,linear_x,linear_y,linear_z,angular_x,angular_y,angular_z,linear_x_variance,"
     "angular_z_variance";
-
-std::string trimmed(const std::string& text) {
-  const std::size_t first = text.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return "";
-  const std::size_t last = text.find_last_not_of(" \t\r");
-  return text.substr(first, last - first + 1);
-}
-
-std::size_t column_count(const std::string& header) {
-  std::size_t count = 1;
-  for (char c : header)
-    count += c == ',';
-  return count;
-}
-
-// The rows of numbers under `header`, each of the header's column count. nan and inf are read as
-// such: they are the sensor's, and the pipeline counts them.
-std::vector<std::vector<double>> parse_rows(std::istream& input, const std::string& source,
-                                            const std::string& header) {
-  const std::size_t columns = column_count(header);
-  std::vector<std::vector<double>> rows;
-  bool header_seen = false;
-  std::string line;
-  for (int number = 1; std::getline(input, line); ++number) {
-    const std::string text = trimmed(line);
-    if (text.empty() || text[0] == '#') continue;
-    const std::string place = source + ":" + std::to_string(number);
-    if (!header_seen) {
-      std::string spaceless;
-      for (char c : text)
-        if (c != ' ' && c != '\t') spaceless += c;
-      if (spaceless != header) throw IoError(place + ": expected the header " + header);
-      header_seen = true;
-      continue;
-    }
-    std::vector<double>& row = rows.emplace_back();
-    std::istringstream cells(text);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) {
-      const std::string value = trimmed(cell);
-      char* end = nullptr;
-      const double parsed = std::strtod(value.c_str(), &end);
-      if (value.empty() || end != value.c_str() + value.size()) {
-        throw IoError(place + ": column " + std::to_string(row.size() + 1) +
-                      ": expected a number, found '" + value + "'");
-      }
-      row.push_back(parsed);
-    }
-    if (row.size() != columns) {
-      throw IoError(place + ": expected " + std::to_string(columns) + " comma-separated numbers (" +
-                    header + "), found " + std::to_string(row.size()));
-    }
-  }
-  if (input.bad()) throw IoError(source + ": read failed");
-  if (!header_seen) throw IoError(source + ": empty: expected the header " + header);
-  return rows;
-}
-
-std::vector<std::vector<double>> read_rows(const std::string& path, const std::string& header) {
-  std::ifstream file(path);
-  if (!file) throw IoError(path + ": cannot open");
-  return parse_rows(file, path, header);
-}
 
 std::string format_number(double value) {
   char buffer[32];
@@ -128,12 +64,11 @@ std::vector<Sample> converted(const std::vector<std::vector<double>>& rows, Conv
 }  // namespace
 
 std::vector<ImuSample> read_imu_csv(const std::string& path) {
-  return converted<ImuSample>(read_rows(path, kImuHeader), imu_from);
+  return converted<ImuSample>(read_csv_with_header(path, kImuHeader).rows, imu_from);
 }
 
 std::vector<ImuSample> parse_imu_csv(const std::string& text, const std::string& source) {
-  std::istringstream input(text);
-  return converted<ImuSample>(parse_rows(input, source, kImuHeader), imu_from);
+  return converted<ImuSample>(parse_csv_with_header(text, source, kImuHeader).rows, imu_from);
 }
 
 void write_imu_csv(const std::string& path, const std::vector<ImuSample>& samples) {
@@ -148,13 +83,13 @@ void write_imu_csv(const std::string& path, const std::vector<ImuSample>& sample
 }
 
 std::vector<WheelOdometrySample> read_wheel_odometry_csv(const std::string& path) {
-  return converted<WheelOdometrySample>(read_rows(path, kWheelHeader), wheel_from);
+  return converted<WheelOdometrySample>(read_csv_with_header(path, kWheelHeader).rows, wheel_from);
 }
 
 std::vector<WheelOdometrySample> parse_wheel_odometry_csv(const std::string& text,
                                                           const std::string& source) {
-  std::istringstream input(text);
-  return converted<WheelOdometrySample>(parse_rows(input, source, kWheelHeader), wheel_from);
+  return converted<WheelOdometrySample>(parse_csv_with_header(text, source, kWheelHeader).rows,
+                                        wheel_from);
 }
 
 void write_wheel_odometry_csv(const std::string& path,

@@ -328,10 +328,8 @@ void FeatureAssociationNode::add_diagnostics(ros_bridge::HealthStatus& status) {
 }
 
 void FeatureAssociationNode::remember_weakest(const Observability& seen) {
-  char text[96];
-  std::snprintf(text, sizeof(text), "x %.2f y %.2f z %.2f, sigma %.3g m",
-                seen.weakest_direction().x(), seen.weakest_direction().y(),
-                seen.weakest_direction().z(), seen.weakest_sigma());
+  const std::string text =
+      ros_bridge::direction_text(seen.weakest_direction(), seen.weakest_sigma());
   std::lock_guard<std::mutex> lock(weakest_mutex_);
   weakest_text_ = text;
 }

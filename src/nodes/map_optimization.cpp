@@ -360,9 +360,7 @@ void MapOptimizationNode::add_diagnostics(ros_bridge::HealthStatus& status) cons
   std::lock_guard<std::mutex> lock(mapping_mutex_);
   if (out_.match.matched) {
     const WeakestDirection weakest = weakest_direction(out_.match, scene_, config_.mapping);
-    char text[128];
-    std::snprintf(text, sizeof(text), "x %.2f y %.2f z %.2f, sigma %.3g m", weakest.direction.x(),
-                  weakest.direction.y(), weakest.direction.z(), weakest.sigma);
+    const std::string text = ros_bridge::direction_text(weakest.direction, weakest.sigma);
     status.add("weakest direction (sensor frame, LiDAR)", text);
     if (degenerate_state_.degenerate()) {
       const std::string holder =

@@ -1,63 +1,61 @@
 #include "adaptive_lego_loam/ros/arrow_marker.h"
 
 namespace adaptive_lego_loam::ros_bridge {
+namespace {
+
+geometry_msgs::Point point_of(const Eigen::Vector3d& p) {
+  geometry_msgs::Point out;
+  out.x = p.x();
+  out.y = p.y();
+  out.z = p.z();
+  return out;
+}
+
+// A marker of `type` from `from` to `to` (id 0 in `ns`) in `style`'s colour, or its DELETE.
+visualization_msgs::Marker two_point_marker(const std_msgs::Header& header, const std::string& ns,
+                                            int type, const std::optional<Eigen::Vector3d>& from,
+                                            const std::optional<Eigen::Vector3d>& to,
+                                            const ArrowStyle& style) {
+  visualization_msgs::Marker marker;
+  marker.header = header;
+  marker.ns = ns;
+  marker.id = 0;
+  marker.type = type;
+  if (!from || !to) {
+    marker.action = visualization_msgs::Marker::DELETE;
+    return marker;
+  }
+  marker.action = visualization_msgs::Marker::ADD;
+  marker.pose.orientation.w = 1.0;
+  marker.points = {point_of(*from), point_of(*to)};
+  marker.color.r = style.red;
+  marker.color.g = style.green;
+  marker.color.b = style.blue;
+  marker.color.a = 1.0f;
+  return marker;
+}
+
+}  // namespace
 
 visualization_msgs::Marker arrow_marker(const std_msgs::Header& header, const std::string& ns,
                                         const std::optional<Eigen::Vector3d>& head,
                                         const ArrowStyle& style) {
-  visualization_msgs::Marker arrow;
-  arrow.header = header;
-  arrow.ns = ns;
-  arrow.id = 0;
-  arrow.type = visualization_msgs::Marker::ARROW;
-  if (!head) {
-    arrow.action = visualization_msgs::Marker::DELETE;
-    return arrow;
-  }
-  arrow.action = visualization_msgs::Marker::ADD;
-  arrow.pose.orientation.w = 1.0;
-  geometry_msgs::Point tail, tip;
-  tip.x = head->x();
-  tip.y = head->y();
-  tip.z = head->z();
-  arrow.points = {tail, tip};
+  visualization_msgs::Marker arrow = two_point_marker(header, ns, visualization_msgs::Marker::ARROW,
+                                                      Eigen::Vector3d::Zero().eval(), head, style);
   arrow.scale.x = style.shaft_diameter;
   arrow.scale.y = style.head_diameter;
   arrow.scale.z = style.head_length;
-  arrow.color.r = style.red;
-  arrow.color.g = style.green;
-  arrow.color.b = style.blue;
-  arrow.color.a = 1.0f;
   return arrow;
 }
 
 visualization_msgs::Marker bar_marker(const std_msgs::Header& header, const std::string& ns,
                                       const std::optional<Eigen::Vector3d>& half, double width,
                                       const ArrowStyle& color) {
-  visualization_msgs::Marker bar;
-  bar.header = header;
-  bar.ns = ns;
-  bar.id = 0;
-  bar.type = visualization_msgs::Marker::LINE_LIST;
-  if (!half) {
-    bar.action = visualization_msgs::Marker::DELETE;
-    return bar;
-  }
-  bar.action = visualization_msgs::Marker::ADD;
-  bar.pose.orientation.w = 1.0;
-  geometry_msgs::Point from, to;
-  from.x = -half->x();
-  from.y = -half->y();
-  from.z = -half->z();
-  to.x = half->x();
-  to.y = half->y();
-  to.z = half->z();
-  bar.points = {from, to};
+  const std::optional<Eigen::Vector3d> from =
+      half ? std::optional<Eigen::Vector3d>(-*half) : std::nullopt;
+  visualization_msgs::Marker bar =
+      two_point_marker(header, ns, visualization_msgs::Marker::LINE_LIST, from, half, color);
   bar.scale.x = width;
-  bar.color.r = color.red;
-  bar.color.g = color.green;
-  bar.color.b = color.blue;
-  bar.color.a = 1.0f;
   return bar;
 }
 

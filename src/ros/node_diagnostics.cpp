@@ -190,4 +190,11 @@ std::vector<std::string> published_cloud_topics() {
   return clouds;
 }
 
+std::string direction_text(const Eigen::Vector3d& direction, double sigma_m) {
+  char text[96];
+  std::snprintf(text, sizeof(text), "x %.2f y %.2f z %.2f, sigma %.3g m", direction.x(),
+                direction.y(), direction.z(), sigma_m);
+  return text;
+}
+
 }  // namespace adaptive_lego_loam::ros_bridge

@@ -5,14 +5,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "adaptive_lego_loam/core/odometry/observability.h"
 #include "adaptive_lego_loam/ros/arrow_marker.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 namespace {
 
-constexpr double kUnknownSigma = 100.0;  // m: covariance_from_information's unknown variance
-constexpr double kBarWidth = 0.3;        // m
-constexpr double kTextHeight = 8.0;      // m above the sensor, over the degeneration's text
+constexpr double kBarWidth = 0.3;    // m
+constexpr double kTextHeight = 8.0;  // m above the sensor, over the degeneration's text
 
 ArrowStyle colour_of(const WeakestDirection& lidar) {
   ArrowStyle colour;
@@ -39,7 +39,7 @@ visualization_msgs::MarkerArray uncertainty_markers(const std_msgs::Header& head
   const Eigen::Vector3d direction = solver.eigenvectors().col(2);
   const double half_length = std::min(3.0 * sigma, kMaxBarHalfLength);
   char line[96];
-  if (sigma >= kUnknownSigma * 0.999) {
+  if (sigma * sigma >= 0.999 * kUnknownVariance) {
     std::snprintf(line, sizeof(line), "pose unknown along the bar");
   } else {
     std::snprintf(line, sizeof(line), "pose 3 sigma %.2f m", 3.0 * sigma);

@@ -156,3 +156,11 @@ TEST(NoInputWarning, NamesTheCloudTopicsThatExistOrTheirAbsence) {
             "image_projection: no scan on /velodyne_points for 2 s; no PointCloud2 topic is "
             "published: is the driver running?");
 }
+
+// Both nodes' weakest-direction lines read the same; an unknown sigma says so.
+TEST(DirectionText, TheDirectionAndItsSigmaInMetres) {
+  EXPECT_EQ(direction_text(Eigen::Vector3d(0.99, 0.05, 0.0), 0.312),
+            "x 0.99 y 0.05 z 0.00, sigma 0.312 m");
+  EXPECT_EQ(direction_text(Eigen::Vector3d::UnitX(), INFINITY),
+            "x 1.00 y 0.00 z 0.00, sigma inf m");
+}

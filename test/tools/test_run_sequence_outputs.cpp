@@ -13,7 +13,7 @@
 #include <string>
 
 #include "adaptive_lego_loam/eval/degeneration_file.h"
-#include "adaptive_lego_loam/eval/numeric_csv.h"
+#include "adaptive_lego_loam/io/numeric_csv.h"
 #include "support/run_command.h"
 #include "support/temp_files.h"
 

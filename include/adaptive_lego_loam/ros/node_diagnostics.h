@@ -15,6 +15,7 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
+#include <Eigen/Core>
 #include <functional>
 #include <map>
 #include <optional>
@@ -116,5 +117,8 @@ std::string no_input_warning(const std::string& node, const std::string& problem
 
 // The PointCloud2 topics the master knows, but the stages' own outputs (segmented_cloud, ...).
 std::vector<std::string> published_cloud_topics();
+
+// A weakest direction as the diagnostics give it: "x 0.99 y 0.05 z 0.00, sigma 0.312 m".
+std::string direction_text(const Eigen::Vector3d& direction, double sigma_m);
 
 }  // namespace adaptive_lego_loam::ros_bridge

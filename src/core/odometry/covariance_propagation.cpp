@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "adaptive_lego_loam/core/motion_sensors/motion_prediction.h"
-
 namespace adaptive_lego_loam {
 namespace {
 

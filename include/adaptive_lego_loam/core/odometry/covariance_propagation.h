@@ -7,16 +7,17 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace adaptive_lego_loam {
+#include "adaptive_lego_loam/core/motion_sensors/motion_prediction.h"
+#include "adaptive_lego_loam/core/odometry/observability.h"
 
-using Matrix6d =
-    Eigen::Matrix<double, 6, 6>;  // as in core/motion_sensors (its adjoint carries these)
+namespace adaptive_lego_loam {
 
 // The covariance of pose * motion: the pose's turned into the motion's end frame plus the
 // motion's own. Variances past `max_variance` are held there: a direction the chain lost once
 // stays as unknown as covariance_from_information makes it, not unknown many times over.
 Matrix6d compose_covariance(const Matrix6d& pose_covariance, const Eigen::Isometry3d& motion,
-                            const Matrix6d& motion_covariance, double max_variance = 1e4);
+                            const Matrix6d& motion_covariance,
+                            double max_variance = kUnknownVariance);
 
 // What `motion` added to a chain whose covariance went from `before` to `after` over it
 // (compose_covariance undone; negative parts from the variances held at max_variance dropped).

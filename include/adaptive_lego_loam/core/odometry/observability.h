@@ -23,10 +23,14 @@ struct Observability {
 // From the information of [rotation vector, translation] (6 x 6, symmetric, possibly singular).
 Observability observability(const Eigen::Matrix<double, 6, 6>& information);
 
+// What a published covariance says of a direction nothing fixes (m^2 or rad^2: 100 m): a pose
+// covariance must be finite.
+constexpr double kUnknownVariance = 1e4;
+
 // The covariance the information implies; along a direction it leaves open, or fixes worse than
-// `unknown_variance`, that variance (a pose covariance must be finite to be published).
+// `unknown_variance`, that variance.
 Eigen::Matrix<double, 6, 6> covariance_from_information(
-    const Eigen::Matrix<double, 6, 6>& information, double unknown_variance = 1e4);
+    const Eigen::Matrix<double, 6, 6>& information, double unknown_variance = kUnknownVariance);
 
 // The information with its translation along the unit `direction` kept only in the share `keep`
 // (the information along it times keep^2): what correspondences say along a direction the scene's

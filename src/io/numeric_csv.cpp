@@ -1,4 +1,4 @@
-#include "adaptive_lego_loam/eval/numeric_csv.h"
+#include "adaptive_lego_loam/io/numeric_csv.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -42,9 +42,18 @@ std::vector<double> numbers(const std::string& line, const std::string& place) {
   return row;
 }
 
-// `columns` numbers a row; the header's names when `header` (and then its count).
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names)
+    out += (out.empty() ? "" : ",") + name;
+  return out;
+}
+
+// `columns` numbers a row; the header's names when `header` (and then its count), which must be
+// `expected` unless that is empty.
 NumericCsv parse(std::istream& input, const std::string& source, bool header,
-                 std::optional<std::size_t> columns, const std::string& what) {
+                 std::optional<std::size_t> columns, const std::string& what,
+                 const std::string& expected = "") {
   NumericCsv table;
   bool header_seen = !header;
   std::string line;
@@ -54,6 +63,8 @@ NumericCsv parse(std::istream& input, const std::string& source, bool header,
     const std::string place = source + ":" + std::to_string(number);
     if (!header_seen) {
       table.columns = cells(text);
+      if (!expected.empty() && joined(table.columns) != expected)
+        throw IoError(place + ": expected the header " + expected);
       columns = table.columns.size();
       header_seen = true;
       continue;
@@ -67,8 +78,15 @@ NumericCsv parse(std::istream& input, const std::string& source, bool header,
     table.lines.push_back(number);
   }
   if (input.bad()) throw IoError(source + ": read failed");
-  if (!header_seen) throw IoError(source + ": empty: expected a header line of column names");
+  if (!header_seen) {
+    throw IoError(source + ": empty: expected " +
+                  (expected.empty() ? "a header line of column names" : "the header " + expected));
+  }
   return table;
+}
+
+std::string header_what(const std::string& expected) {
+  return expected.empty() ? "one for each column of the header" : expected;
 }
 
 std::ifstream opened(const std::string& path) {
@@ -84,14 +102,15 @@ int NumericCsv::column(const std::string& name) const {
   return found == columns.end() ? -1 : static_cast<int>(found - columns.begin());
 }
 
-NumericCsv read_csv_with_header(const std::string& path) {
+NumericCsv read_csv_with_header(const std::string& path, const std::string& expected) {
   std::ifstream file = opened(path);
-  return parse(file, path, true, std::nullopt, "one for each column of the header");
+  return parse(file, path, true, std::nullopt, header_what(expected), expected);
 }
 
-NumericCsv parse_csv_with_header(const std::string& text, const std::string& source) {
+NumericCsv parse_csv_with_header(const std::string& text, const std::string& source,
+                                 const std::string& expected) {
   std::istringstream input(text);
-  return parse(input, source, true, std::nullopt, "one for each column of the header");
+  return parse(input, source, true, std::nullopt, header_what(expected), expected);
 }
 
 NumericCsv read_csv_numbers(const std::string& path, std::size_t columns, const std::string& what) {
