@@ -17,6 +17,7 @@
 #include "adaptive_lego_loam/sim/scenario.h"
 #include "adaptive_lego_loam/sim/simulator.h"
 #include "adaptive_lego_loam/sim/trajectory.h"
+#include "support/sanitizers.h"
 
 using namespace adaptive_lego_loam;
 using namespace adaptive_lego_loam::sim;
@@ -144,6 +145,7 @@ TEST(SimOdometry, ASkewedSweepIsPosedWhereItEnds) {
 // 0.85-0.95; along guard rails alone it falls to 0.5 or below, as a rail's few rows break into
 // small depth clusters and the skeleton keeps little more than nearby cars, posts and signs.
 TEST(SimOdometry, HighwayAndTunnelAreMoreDegenerateThanUrban) {
+  ALEGO_SKIP_WHEN_SANITIZED();
   const Config config = kitti_config();
   auto mean_mu = [&](const std::string& scenario) {
     AmbientFilter filter(config);
@@ -183,6 +185,7 @@ TEST(SimOdometry, HighwayAndTunnelAreMoreDegenerateThanUrban) {
 // fragments lie on smooth lines where leaves' do not: counted as structure, they lift the bare
 // highway's share above the planted one's (ambient_filter.fragment_smoothness_floor).
 TEST(SimOdometry, TheSkeletonIsASmallShareOfFoliageAndRailsFragmentsAreSmooth) {
+  ALEGO_SKIP_WHEN_SANITIZED();
   const Config config = kitti_config();
   struct Medians {
     double skeleton_share, smoothness, structure_share;
@@ -236,6 +239,7 @@ TEST(SimOdometry, TheSkeletonIsASmallShareOfFoliageAndRailsFragmentsAreSmooth) {
 // much of them and drifts more than the adaptive one, which sees the degenerate road and keeps
 // them.
 TEST(SimOdometry, AdaptiveThresholdDriftsLessOnTheHighwayThanTheStrictOne) {
+  ALEGO_SKIP_WHEN_SANITIZED();
   const int frames = 200;
   const std::string data = std::string(TEST_DATA_DIR) + "/kitti_poses/";
   SceneRequest request = scene_request(ScenarioKind::kHighway, 5, frames);
@@ -268,6 +272,7 @@ TEST(SimOdometry, AdaptiveThresholdDriftsLessOnTheHighwayThanTheStrictOne) {
 // without kitti.yaml's range weighting. (Beside the green highway's planted verges, as dense as
 // KITTI's, even the zero guess finds the motion, as on the real KITTI 01.)
 TEST(SimOdometry, AHighwayEnteredAtSpeedIsTrackedFromItsFirstScan) {
+  ALEGO_SKIP_WHEN_SANITIZED();
   const int first = 120, frames = 80;
   const std::string data = std::string(TEST_DATA_DIR) + "/kitti_poses/";
   const std::vector<Eigen::Isometry3d> poses =
