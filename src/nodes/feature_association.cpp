@@ -70,6 +70,7 @@ FeatureAssociationNode::FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHan
                                                const Config& config)
     : config_(config),
       odometry_(config.sensor, config.features, config.odometry),
+      workers_(ros_bridge::load_workers(private_nh)),
       frames_(ros_bridge::load_frame_names(private_nh)),
       pairing_("feature_association", {"segmented_cloud", "segmented_cloud_info", "outlier_cloud"},
                private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
@@ -291,6 +292,7 @@ void FeatureAssociationNode::process(const ros_bridge::StampMatcher::Group& grou
                                          *group.get<sensor_msgs::PointCloud2>(kOutliers), topics(),
                                          received_);
     if (relay_) prediction = predict(header, release, times);
+    const UseWorkers use_workers(workers_.get());
     odometry_.process(received_.cloud, received_.has_time, out_, prediction);
   } catch (const std::exception& e) {
     drop("bad cloud", e.what());

@@ -72,6 +72,7 @@ class FeatureAssociationNode {
 
   Config config_;
   LidarOdometry odometry_;
+  std::unique_ptr<Workers> workers_;  // ~threads: the searches shared (none: this thread)
   ros_bridge::ReceivedSegmentedCloud received_;  // the latest scan; its buffers are reused
   OdometryOutput out_;
   ros_bridge::FrameNames frames_;

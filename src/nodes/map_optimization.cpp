@@ -52,6 +52,7 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
       map_folder_(private_nh.param<std::string>("map", "")),
       initial_pose_(initial_pose_param(private_nh)),
       save_on_exit_(private_nh.param<std::string>("save_map_on_exit", "")),
+      workers_(ros_bridge::load_workers(private_nh)),
       uses_motion_sensors_(private_nh.param("motion_sensors", false)),
       degenerate_state_(config.mapping.degenerate_translation_sigma),
       frames_(ros_bridge::load_frame_names(private_nh)),
@@ -249,6 +250,7 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
   }
   {
     std::lock_guard<std::mutex> lock(mapping_mutex_);
+    const UseWorkers use_workers(workers_.get());
     mapping_->process(features, odometry_pose, group.stamp.toSec(), prior, out_,
                       sensors ? &*sensors : nullptr, scene_);
     sensor_frame_ = odometry->child_frame_id.empty() ? frames_.sensor : odometry->child_frame_id;

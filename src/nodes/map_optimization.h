@@ -84,6 +84,7 @@ class MapOptimizationNode {
   std::string save_on_exit_;                                        // ~save_map_on_exit
   mutable std::mutex mapping_mutex_;  // the mapping, between scans and save_map
   std::unique_ptr<LidarMapping> mapping_;
+  std::unique_ptr<Workers> workers_;  // ~threads: the searches shared (none: this thread)
   MappingOutput out_;
   bool uses_motion_sensors_;  // ~motion_sensors: feature_association sends /motion_priors
   std::optional<SceneDegeneration> scene_;  // the scan being mapped's, from /degeneration

@@ -66,6 +66,15 @@ Config load_node_config(const ros::NodeHandle& private_nh) {
   return paths.size() == 1 ? load_config(paths.front()) : load_config(paths);
 }
 
+std::unique_ptr<Workers> load_workers(const ros::NodeHandle& private_nh) {
+  const int threads = private_nh.param("threads", 1);
+  if (threads < 1 || threads > 64) {
+    throw ConfigError(private_nh.resolveName("threads") + " = " + std::to_string(threads) +
+                      ": expected 1 to 64");
+  }
+  return threads > 1 ? std::make_unique<Workers>(threads) : nullptr;
+}
+
 FrameNames load_frame_names(const ros::NodeHandle& private_nh) {
   FrameNames frames;
   private_nh.param("map_frame", frames.map, frames.map);

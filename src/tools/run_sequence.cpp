@@ -54,6 +54,7 @@ struct Options {
   int max_frames = -1;
   bool cpu_time = false;
   bool skip_bad_scans = false;
+  int threads = 1;
   std::string save_map, localize;
   std::vector<double> initial_pose;  // x, y, z, yaw in degrees
   std::string imu, wheel_odom, imu_topic, wheel_odom_topic;
@@ -449,6 +450,7 @@ int run(const Options& options) {
   std::unique_ptr<ScanSequence> sequence = open_sequence(options, config.sensor);
   MotionSensorFeed motion_sensors(options, config);
   std::unique_ptr<Pipeline> pipeline = make_pipeline(options, config);
+  pipeline->set_threads(options.threads);
   Outputs outputs(options.output);
   const int total = options.max_frames >= 0 && sequence->size() >= 0
                         ? std::min(options.max_frames, sequence->size())
@@ -466,22 +468,48 @@ int run(const Options& options) {
   LocalizationCounts localization;
   std::optional<double> last_stamp;
   std::string failure;
-  try {
-    while (options.max_frames < 0 || frames < options.max_frames) {
-      std::optional<Scan> scan;
+  // Two slots: with threads, the next scan is read before this one is processed, and its
+  // ambient filter runs while this one is registered. A scan that cannot be read stops the run
+  // when its turn comes, as without threads.
+  std::optional<Scan> slots[2];
+  std::exception_ptr read_errors[2];
+  int reads = 0;
+  const auto read = [&](int slot) {
+    slots[slot].reset();
+    read_errors[slot] = nullptr;
+    try {
       try {
-        scan = sequence->next();
+        slots[slot] = sequence->next();
       } catch (const IoError& e) {
         if (!options.skip_bad_scans) throw;
-        std::fprintf(stderr, "\nrun_sequence: warning: frame %d skipped: %s\n", frames, e.what());
+        std::fprintf(stderr, "\nrun_sequence: warning: frame %d skipped: %s\n", reads, e.what());
         ++skipped_scans;
-        scan = skipped_scan(*sequence, last_stamp, config.sensor.scan_period);
+        slots[slot] = skipped_scan(*sequence, last_stamp, config.sensor.scan_period);
       }
-      if (!scan) break;
+    } catch (...) {
+      read_errors[slot] = std::current_exception();
+    }
+    if (slots[slot]) last_stamp = slots[slot]->stamp;
+    ++reads;
+  };
+  const bool read_ahead = pipeline->threads() > 1;
+  int current = 0;
+  try {
+    if (options.max_frames != 0) read(current);
+    while (options.max_frames < 0 || frames < options.max_frames) {
+      if (read_errors[current]) std::rethrow_exception(read_errors[current]);
+      if (!slots[current]) break;
+      const int other = 1 - current;
+      const bool more = options.max_frames < 0 || frames + 1 < options.max_frames;
+      const Scan* next = nullptr;
+      if (read_ahead && more) {
+        read(other);
+        if (slots[other]) next = &*slots[other];
+      }
+      const Scan* scan = &*slots[current];
       stamps.add(scan->stamp);
-      last_stamp = scan->stamp;
       motion_sensors.feed_until(scan->stamp, *pipeline);
-      const FrameResult& result = pipeline->process(*scan);
+      const FrameResult& result = pipeline->process(*scan, next);
       if (const auto warning =
               fit.check(config.sensor, pipeline->filter_result().segmentation.image,
                         rows_from_ring(config.sensor, scan->has_ring))) {
@@ -496,9 +524,13 @@ int run(const Options& options) {
       outputs.add_loop(result.frame, result.loop, result.loop_closed, pipeline->keyframes());
       outputs.add_localization(result.frame, result.localization);
       progress.update(++frames);
+      if (!more) break;
+      if (!read_ahead) read(other);
+      current = other;
     }
   } catch (const std::exception& e) {
     failure = e.what();
+    pipeline.reset();  // first: a scan filtered ahead is read until its thread is joined
   }
   progress.finish();
   if (!failure.empty()) {
@@ -569,6 +601,7 @@ int run(const Options& options) {
   if (!sensors.is_null()) summary["motion_sensors"] = sensors;
   summary["motion_gated_scans"] = motion_gated_scans;
   summary["odometry_rejected_motions"] = odometry_rejected_motions;
+  summary["threads"] = options.threads;
   summary["wall_time_s"] = wall_s;
   summary["frames_per_second"] = wall_s > 0 ? frames / wall_s : 0.0;
   summary["stage_clock"] = options.cpu_time ? "thread CPU" : "wall";
@@ -634,6 +667,11 @@ int main(int argc, char** argv) {
   app.add_flag("--cpu-time", options.cpu_time,
                "stage times (timing.csv, summary.json) in thread CPU time instead of wall-clock "
                "time: what the stages cost on a machine shared with other work");
+  app.add_option("--threads", options.threads,
+                 "threads (1: the default): with 2 or more the next scan's ambient filter runs "
+                 "while this one is registered, and the scan-to-map search is shared; the same "
+                 "poses to the last bit")
+      ->check(CLI::Range(1, 64));
   app.add_flag("--skip-bad-scans", options.skip_bad_scans,
                "go on past a scan that cannot be read (a warning; its pose is predicted and it is "
                "counted as skipped_scans in summary.json); default: stop there");

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/params.h"
+#include "adaptive_lego_loam/core/common/workers.h"
 
 namespace adaptive_lego_loam::ros_bridge {
 
@@ -39,6 +40,10 @@ struct FrameNames {
 };
 // ~map_frame, ~odom_frame, ~base_frame, ~sensor_frame.
 FrameNames load_frame_names(const ros::NodeHandle& private_nh);
+
+// ~threads (default 1): the threads a stage shares its per-point searches among (nullptr: the
+// node's own thread alone). Throws ConfigError naming the parameter outside 1-64.
+std::unique_ptr<Workers> load_workers(const ros::NodeHandle& private_nh);
 
 // Set by SIGINT and SIGTERM in a node's process (run_node).
 void request_node_stop(int signal);

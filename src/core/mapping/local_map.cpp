@@ -2,22 +2,24 @@
 
 #include <algorithm>
 
+#include "adaptive_lego_loam/core/common/workers.h"
+
 namespace adaptive_lego_loam {
 
 LocalMap::Placement::Placement(const MappingParams& params)
     : corners(params.corner_voxel, kSearchRadius), surfaces(params.surface_voxel, kSearchRadius) {}
 
 void LocalMap::Placement::put_in(const Keyframe& keyframe) {
-  corners.add(*keyframe.corners->unpack(keyframe.pose));
-  surfaces.add(*keyframe.surfaces->unpack(keyframe.pose));
+  run_both([&] { corners.add(*keyframe.corners->unpack(keyframe.pose)); },
+           [&] { surfaces.add(*keyframe.surfaces->unpack(keyframe.pose)); });
   placed[keyframe.index] = {keyframe.corners, keyframe.surfaces, keyframe.pose};
 }
 
 void LocalMap::Placement::take_out(int keyframe) {
   const auto found = placed.find(keyframe);
   const Placed& features = found->second;
-  corners.remove(*features.corners->unpack(features.pose));
-  surfaces.remove(*features.surfaces->unpack(features.pose));
+  run_both([&] { corners.remove(*features.corners->unpack(features.pose)); },
+           [&] { surfaces.remove(*features.surfaces->unpack(features.pose)); });
   placed.erase(found);
 }
 

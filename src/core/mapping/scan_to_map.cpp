@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/rotations.h"
+#include "adaptive_lego_loam/core/common/workers.h"
 #include "adaptive_lego_loam/core/odometry/observability.h"
 #include "adaptive_lego_loam/core/odometry/residuals.h"
 
@@ -212,20 +213,23 @@ class CorrespondenceCache {
   CorrespondenceCache(const Cloud& scan, const VoxelMap& map, Fit fit, float keep_distance)
       : scan_(scan), map_(map), fit_(fit), keep_distance_(keep_distance), entries_(scan.size()) {}
 
-  // The correspondences with the scan placed by (rotation, translation), in scan order.
+  // The correspondences with the scan placed by (rotation, translation), in scan order (the
+  // points split among the current workers).
   void update(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation,
               std::vector<Match>& out) {
     out.clear();
-    for (std::size_t i = 0; i < scan_.size(); ++i) {
+    append_in_order(scan_.size(), kPointsPerChunk, out, [&](std::size_t i, std::vector<Match>& to) {
       const Eigen::Vector3d sensor_point = scan_[i].getVector3fMap().cast<double>();
       const Eigen::Vector3f at = (rotation * sensor_point + translation).cast<float>();
       Entry& entry = entries_[i];
       if (!entry.searched || !still_valid(entry, at)) search(at, sensor_point, entry);
-      if (entry.match) out.push_back(*entry.match);
-    }
+      if (entry.match) to.push_back(*entry.match);
+    });
   }
 
  private:
+  static constexpr std::size_t kPointsPerChunk = 128;
+
   struct Entry {
     bool searched = false;
     Eigen::Vector3f searched_at;

@@ -6,15 +6,18 @@
 #include <algorithm>
 #include <cmath>
 
-#include "adaptive_lego_loam/core/odometry/residuals.h"
-#include "adaptive_lego_loam/core/odometry/observability.h"
 #include <cstdio>
+#include "adaptive_lego_loam/core/common/workers.h"
+#include "adaptive_lego_loam/core/odometry/observability.h"
+#include "adaptive_lego_loam/core/odometry/residuals.h"
 
 namespace adaptive_lego_loam {
 
 namespace {
 
 constexpr int kCandidates = 15;
+// Feature points a chunk when the search is shared among threads.
+constexpr std::size_t kPointsPerChunk = 64;
 
 Eigen::Vector3d position(const CloudPoint& p) {
   return p.getVector3fMap().cast<double>();
@@ -82,23 +85,29 @@ void ScanToScanOdometry::find_edge_matches(const Cloud& sharp, const Eigen::Isom
   if (previous_corners_->size() < 2) return;
   const float max_squared =
       static_cast<float>(params_.max_match_distance * params_.max_match_distance);
+  append_in_order(sharp.size(), kPointsPerChunk, matches.lines,
+                  [&](std::size_t i, std::vector<LineMatch>& out) {
+                    find_edge_match(sharp[i], pose, max_squared, out);
+                  });
+}
+
+void ScanToScanOdometry::find_edge_match(const CloudPoint& p, const Eigen::Isometry3d& pose,
+                                         float max_squared, std::vector<LineMatch>& out) const {
   uint32_t indices[kCandidates];
   float squared[kCandidates];
-  for (const CloudPoint& p : sharp) {
-    const int found =
-        corner_tree_.nearest(moved_point(p, pose), kCandidates, indices, squared, max_squared);
-    if (found < 2) continue;
-    // The line runs through the nearest edge point and the nearest one on a neighbouring row.
-    const CloudPoint& nearest = (*previous_corners_)[indices[0]];
-    for (int k = 1; k < found; ++k) {
-      const CloudPoint& other = (*previous_corners_)[indices[k]];
-      const int row_gap = std::abs(row_of(other) - row_of(nearest));
-      if (row_gap == 0 || row_gap > 2) continue;
-      const Eigen::Vector3d along = position(nearest) - position(other);
-      if (along.norm() < 1e-6) continue;
-      matches.lines.push_back({position(p), position(nearest), along.normalized(), range_scale(p)});
-      break;
-    }
+  const int found =
+      corner_tree_.nearest(moved_point(p, pose), kCandidates, indices, squared, max_squared);
+  if (found < 2) return;
+  // The line runs through the nearest edge point and the nearest one on a neighbouring row.
+  const CloudPoint& nearest = (*previous_corners_)[indices[0]];
+  for (int k = 1; k < found; ++k) {
+    const CloudPoint& other = (*previous_corners_)[indices[k]];
+    const int row_gap = std::abs(row_of(other) - row_of(nearest));
+    if (row_gap == 0 || row_gap > 2) continue;
+    const Eigen::Vector3d along = position(nearest) - position(other);
+    if (along.norm() < 1e-6) continue;
+    out.push_back({position(p), position(nearest), along.normalized(), range_scale(p)});
+    return;
   }
 }
 
@@ -108,30 +117,36 @@ void ScanToScanOdometry::find_plane_matches(const Cloud& flat, const Eigen::Isom
   if (previous_surfaces_->size() < 3) return;
   const float max_squared =
       static_cast<float>(params_.max_match_distance * params_.max_match_distance);
+  append_in_order(flat.size(), kPointsPerChunk, matches.planes,
+                  [&](std::size_t i, std::vector<PlaneMatch>& out) {
+                    find_plane_match(flat[i], pose, max_squared, out);
+                  });
+}
+
+void ScanToScanOdometry::find_plane_match(const CloudPoint& p, const Eigen::Isometry3d& pose,
+                                          float max_squared, std::vector<PlaneMatch>& out) const {
   uint32_t indices[kCandidates];
   float squared[kCandidates];
-  for (const CloudPoint& p : flat) {
-    const int found =
-        surface_tree_.nearest(moved_point(p, pose), kCandidates, indices, squared, max_squared);
-    if (found < 3) continue;
-    // The plane runs through the nearest surface point, the nearest on its row and the nearest
-    // on a neighbouring row.
-    const CloudPoint& nearest = (*previous_surfaces_)[indices[0]];
-    const CloudPoint* same_row = nullptr;
-    const CloudPoint* other_row = nullptr;
-    for (int k = 1; k < found; ++k) {
-      const CloudPoint& candidate = (*previous_surfaces_)[indices[k]];
-      const int row_gap = std::abs(row_of(candidate) - row_of(nearest));
-      if (row_gap == 0 && !same_row) same_row = &candidate;
-      if (row_gap > 0 && row_gap <= 2 && !other_row) other_row = &candidate;
-    }
-    if (!same_row || !other_row) continue;
-    const Eigen::Vector3d a = position(nearest), b = position(*same_row), c = position(*other_row);
-    Eigen::Vector3d normal = (b - a).cross(c - a);
-    if (normal.norm() < 1e-6) continue;
-    normal.normalize();
-    matches.planes.push_back({position(p), normal, -normal.dot(a), range_scale(p)});
+  const int found =
+      surface_tree_.nearest(moved_point(p, pose), kCandidates, indices, squared, max_squared);
+  if (found < 3) return;
+  // The plane runs through the nearest surface point, the nearest on its row and the nearest on
+  // a neighbouring row.
+  const CloudPoint& nearest = (*previous_surfaces_)[indices[0]];
+  const CloudPoint* same_row = nullptr;
+  const CloudPoint* other_row = nullptr;
+  for (int k = 1; k < found; ++k) {
+    const CloudPoint& candidate = (*previous_surfaces_)[indices[k]];
+    const int row_gap = std::abs(row_of(candidate) - row_of(nearest));
+    if (row_gap == 0 && !same_row) same_row = &candidate;
+    if (row_gap > 0 && row_gap <= 2 && !other_row) other_row = &candidate;
   }
+  if (!same_row || !other_row) return;
+  const Eigen::Vector3d a = position(nearest), b = position(*same_row), c = position(*other_row);
+  Eigen::Vector3d normal = (b - a).cross(c - a);
+  if (normal.norm() < 1e-6) return;
+  normal.normalize();
+  out.push_back({position(p), normal, -normal.dot(a), range_scale(p)});
 }
 
 void ScanToScanOdometry::solve(const Correspondences& matches, MatchKinds kinds,
@@ -185,8 +200,8 @@ OdometryResult ScanToScanOdometry::align(const FeatureSet& current, const Eigen:
 void ScanToScanOdometry::keep(const FeatureSet& current) {
   previous_corners_ = current.less_sharp;
   previous_surfaces_ = current.less_flat;
-  corner_tree_.build(previous_corners_);
-  surface_tree_.build(previous_surfaces_);
+  run_both([&] { corner_tree_.build(previous_corners_); },
+           [&] { surface_tree_.build(previous_surfaces_); });
 }
 
 OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
@@ -212,8 +227,11 @@ std::vector<OdometryResult> ScanToScanOdometry::align_each(
     const FeatureSet& current, const std::vector<Eigen::Isometry3d>& guesses) const {
   std::vector<OdometryResult> results;
   if (!previous_corners_ || !previous_surfaces_) return results;
-  for (const Eigen::Isometry3d& guess : guesses)
-    results.push_back(align(current, guess, params_.max_iterations));
+  results.resize(guesses.size());
+  for_chunks(guesses.size(), 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      results[i] = align(current, guesses[i], params_.max_iterations);
+  });
   return results;
 }
 

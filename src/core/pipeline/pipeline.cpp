@@ -1,5 +1,7 @@
 #include "adaptive_lego_loam/core/pipeline/pipeline.h"
 
+#include <stdexcept>
+
 #include "adaptive_lego_loam/core/odometry/observability.h"
 
 namespace adaptive_lego_loam {
@@ -88,11 +90,34 @@ Pipeline::Pipeline(const Config& config, std::vector<Keyframe> map, const Eigen:
       odometry_(config.sensor, config.features, config.odometry),
       mapping_(config, std::move(map), start) {}
 
+void Pipeline::set_threads(int threads) {
+  if (ahead_of_) throw std::logic_error("Pipeline: threads changed while a scan runs ahead");
+  workers_ = threads > 1 ? std::make_unique<Workers>(threads) : nullptr;
+}
+
 const FrameResult& Pipeline::process(const Scan& scan) {
+  return process(scan, nullptr);
+}
+
+const FrameResult& Pipeline::process(const Scan& scan, const Scan* next) {
   result_ = FrameResult();
   result_.frame = frames_++;
   result_.stamp = scan.stamp;
-  filter_.process(scan, filtered_);
+  if (ahead_of_) {
+    const std::pair<double, std::size_t> announced = *ahead_of_;
+    ahead_of_.reset();
+    workers_->wait_background();
+    if (announced != std::make_pair(scan.stamp, scan.points.size()))
+      throw std::logic_error("Pipeline: the scan processed is not the one announced as next");
+    std::swap(filtered_, filtered_ahead_);
+  } else {
+    filter_.process(scan, filtered_);
+  }
+  if (next && workers_) {
+    ahead_of_ = std::make_pair(next->stamp, next->points.size());
+    workers_->start_background([this, next] { filter_.process(*next, filtered_ahead_); });
+  }
+  const UseWorkers use_workers(workers_.get());
   result_.times.append(filtered_.times());
   result_.valid_scan = filtered_.segmentation.image.stats().projected > 0;
 

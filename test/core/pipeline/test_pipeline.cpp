@@ -13,15 +13,26 @@ namespace {
 
 const std::string kSequence = std::string(TEST_DATA_DIR) + "/kitti_seq07";
 
-std::vector<Eigen::Isometry3d> run(const Config& config,
-                                   std::vector<FrameResult>* frames = nullptr) {
-  Pipeline pipeline(config);
+std::vector<Scan> kitti_scans() {
   const std::vector<double> times = read_kitti_times(kSequence + "/times.txt");
   const auto files = list_scan_files(kSequence + "/velodyne");
+  std::vector<Scan> scans;
   for (std::size_t i = 0; i < files.size(); ++i) {
-    Scan scan = read_kitti_bin(files[i]);
-    scan.stamp = times[i];
-    const FrameResult& result = pipeline.process(scan);
+    scans.push_back(read_kitti_bin(files[i]));
+    scans.back().stamp = times[i];
+  }
+  return scans;
+}
+
+// With `threads` > 1 each scan is processed knowing the next, as run_sequence does.
+std::vector<Eigen::Isometry3d> run(const Config& config, std::vector<FrameResult>* frames = nullptr,
+                                   int threads = 1) {
+  Pipeline pipeline(config);
+  pipeline.set_threads(threads);
+  const std::vector<Scan> scans = kitti_scans();
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    const Scan* next = threads > 1 && i + 1 < scans.size() ? &scans[i + 1] : nullptr;
+    const FrameResult& result = pipeline.process(scans[i], next);
     if (frames) frames->push_back(result);
   }
   return pipeline.trajectory();
@@ -77,6 +88,37 @@ TEST(Pipeline, SameInputGivesIdenticalPoses) {
   for (std::size_t i = 0; i < first.size(); ++i) {
     EXPECT_TRUE(first[i].matrix() == second[i].matrix()) << "frame " << i;
   }
+}
+
+// Threads change when the work is done, not what it computes: the first pair's start search (its
+// guesses shared), every scan's filter (run ahead) and the searches give the same bits.
+TEST(Pipeline, MoreThreadsGiveTheSamePosesToTheLastBit) {
+  const Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  std::vector<FrameResult> one_thread;
+  const auto reference = run(config, &one_thread);
+  for (int threads : {2, 3}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    std::vector<FrameResult> frames;
+    const auto poses = run(config, &frames, threads);
+    ASSERT_EQ(poses.size(), reference.size());
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      SCOPED_TRACE("frame " + std::to_string(i));
+      EXPECT_TRUE(poses[i].matrix() == reference[i].matrix());
+      EXPECT_TRUE(frames[i].odometry_pose.matrix() == one_thread[i].odometry_pose.matrix());
+      EXPECT_TRUE(frames[i].mapping.information == one_thread[i].mapping.information);
+      EXPECT_EQ(frames[i].mapping.plane_matches, one_thread[i].mapping.plane_matches);
+      EXPECT_EQ(frames[i].flat, one_thread[i].flat);
+    }
+  }
+}
+
+TEST(Pipeline, AScanOtherThanTheAnnouncedNextIsRefused) {
+  const Config config = load_config(std::string(CONFIG_DIR) + "/kitti.yaml");
+  const std::vector<Scan> scans = kitti_scans();
+  Pipeline pipeline(config);
+  pipeline.set_threads(2);
+  pipeline.process(scans[0], &scans[1]);
+  EXPECT_THROW(pipeline.process(scans[2], &scans[3]), std::logic_error);
 }
 
 // KITTI 07 starts at about 0.9 m/s (0.09 m a scan). With the odometry's speed bound below that,

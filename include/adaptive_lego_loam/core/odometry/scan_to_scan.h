@@ -13,7 +13,9 @@
 
 namespace adaptive_lego_loam {
 
-struct Correspondences;       // core/residuals.h
+struct Correspondences;  // core/odometry/residuals.h
+struct LineMatch;
+struct PlaneMatch;
 enum class MatchKinds : int;  // core/residuals.h
 
 struct OdometryResult {
@@ -52,10 +54,15 @@ class ScanToScanOdometry {
   OdometryResult align(const FeatureSet& current, const Eigen::Isometry3d& guess, int iterations,
                        Correspondences* final_matches = nullptr) const;
   void keep(const FeatureSet& current);
+  // Each point's correspondence (when it has one), in the points' order.
   void find_edge_matches(const Cloud& sharp, const Eigen::Isometry3d& pose,
                          Correspondences& matches) const;
+  void find_edge_match(const CloudPoint& p, const Eigen::Isometry3d& pose, float max_squared,
+                       std::vector<LineMatch>& out) const;
   void find_plane_matches(const Cloud& flat, const Eigen::Isometry3d& pose,
                           Correspondences& matches) const;
+  void find_plane_match(const CloudPoint& p, const Eigen::Isometry3d& pose, float max_squared,
+                        std::vector<PlaneMatch>& out) const;
   // One Ceres solve over the given correspondence kinds with the listed entries of the Euler
   // 6-vector held fixed.
   void solve(const Correspondences& matches, MatchKinds kinds,

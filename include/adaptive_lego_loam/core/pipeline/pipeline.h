@@ -4,11 +4,15 @@
 // (map_optimization, with transform fusion).
 
 #include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "adaptive_lego_loam/core/ambient/ambient_filter.h"
 #include "adaptive_lego_loam/core/common/params.h"
 #include "adaptive_lego_loam/core/common/timing.h"
+#include "adaptive_lego_loam/core/common/workers.h"
 #include "adaptive_lego_loam/core/motion_sensors/motion_sensors.h"
 #include "adaptive_lego_loam/core/odometry/lidar_odometry.h"
 #include "adaptive_lego_loam/core/pipeline/lidar_mapping.h"
@@ -82,6 +86,14 @@ class Pipeline {
   // Localization on a saved map's keyframes from `start` (see LidarMapping).
   Pipeline(const Config& config, std::vector<Keyframe> map, const Eigen::Isometry3d& start);
   const FrameResult& process(const Scan& scan);
+  // The same, with the next scan known: with more than one thread (set_threads), its ambient
+  // filter runs on a second thread while this scan is registered, and the scan-to-map search is
+  // shared by idle threads; the poses are the same to the last bit. `next` must stay unchanged
+  // until the next call, which must process it.
+  const FrameResult& process(const Scan& scan, const Scan* next);
+  // 1 (the default): everything on the caller's thread.
+  void set_threads(int threads);
+  int threads() const { return workers_ ? workers_->threads() : 1; }
   // The optional motion sensors' samples, as they arrive (before the scans they cover): a
   // sample's fault is counted, the sample dropped and the fault returned (for logging).
   std::optional<SampleFault> add_imu(const ImuSample& sample) { return motion_.add_imu(sample); }
@@ -110,6 +122,11 @@ class Pipeline {
   MappingOutput mapping_out_;
   int frames_ = 0;
   FrameResult result_;
+  // The next scan's filter result while it runs ahead, and which scan it is.
+  AmbientFilterResult filtered_ahead_;
+  std::optional<std::pair<double, std::size_t>> ahead_of_;
+  // Last: destroyed first, its threads joined before what they work on goes.
+  std::unique_ptr<Workers> workers_;
 };
 
 }  // namespace adaptive_lego_loam
