@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <map>
 #include <optional>
 
@@ -423,6 +424,90 @@ Scan skipped_scan(const ScanSequence& sequence, std::optional<double> last_stamp
   return scan;
 }
 
+// The scans in order (at most --max-frames). Reading ahead (with threads), the scan after the one
+// taken is read already (its ambient filter runs while this one is registered) and the one after
+// that on a thread of its own. A scan that cannot be read stops the run when its turn comes, or
+// with --skip-bad-scans is replaced by an empty one at its predicted stamp.
+class ScanReader {
+ public:
+  ScanReader(ScanSequence& sequence, const Options& options, double scan_period, bool ahead)
+      : sequence_(sequence),
+        skip_bad_scans_(options.skip_bad_scans),
+        scan_period_(scan_period),
+        ahead_(ahead),
+        limit_(options.max_frames) {}
+  ~ScanReader() { join(); }
+
+  // The next scan to process (nullptr: none is left); valid until the call after next.
+  const Scan* take() {
+    const int index = taken_++;
+    const Scan* scan = scan_at(index);
+    next_ = nullptr;
+    if (scan && ahead_) {
+      next_ = scan_at(index + 1);
+      if (next_ && may_read(index + 2)) {
+        reading_ = std::async(std::launch::async, [this] { read(); });
+      }
+    }
+    return scan;
+  }
+  // With reading ahead, the scan the next take() returns (nullptr: none, or not reading ahead).
+  const Scan* next() const { return next_; }
+  int skipped() const { return skipped_; }
+
+ private:
+  static constexpr int kSlots = 3;
+
+  bool may_read(int index) const { return limit_ < 0 || index < limit_; }
+
+  // Scan `index` (read now unless it was read ahead), nullptr past the end.
+  const Scan* scan_at(int index) {
+    if (!may_read(index)) return nullptr;
+    join();
+    while (reads_ <= index)
+      read();
+    const int slot = index % kSlots;
+    if (errors_[slot]) std::rethrow_exception(errors_[slot]);
+    return slots_[slot] ? &*slots_[slot] : nullptr;
+  }
+
+  void join() {
+    if (reading_.valid()) reading_.get();
+  }
+
+  void read() {
+    const int slot = reads_ % kSlots;
+    slots_[slot].reset();
+    errors_[slot] = nullptr;
+    try {
+      try {
+        slots_[slot] = sequence_.next();
+      } catch (const IoError& e) {
+        if (!skip_bad_scans_) throw;
+        std::fprintf(stderr, "\nrun_sequence: warning: frame %d skipped: %s\n", reads_, e.what());
+        ++skipped_;
+        slots_[slot] = skipped_scan(sequence_, last_stamp_, scan_period_);
+      }
+    } catch (...) {
+      errors_[slot] = std::current_exception();
+    }
+    if (slots_[slot]) last_stamp_ = slots_[slot]->stamp;
+    ++reads_;
+  }
+
+  ScanSequence& sequence_;
+  bool skip_bad_scans_;
+  double scan_period_;
+  bool ahead_;
+  int limit_;  // -1: none
+  std::optional<Scan> slots_[kSlots];
+  std::exception_ptr errors_[kSlots];
+  std::optional<double> last_stamp_;
+  std::future<void> reading_;
+  const Scan* next_ = nullptr;
+  int taken_ = 0, reads_ = 0, skipped_ = 0;
+};
+
 std::string describe_segmentation(const AmbientFilterParams& ambient) {
   switch (ambient.mode) {
     case Beta0Mode::kAdaptive:
@@ -466,50 +551,15 @@ int run(const Options& options) {
   ScanStamps stamps(config.sensor.scan_period);
   ConfigFitWarning fit(config.source, options.input);
   LocalizationCounts localization;
-  std::optional<double> last_stamp;
   std::string failure;
-  // Two slots: with threads, the next scan is read before this one is processed, and its
-  // ambient filter runs while this one is registered. A scan that cannot be read stops the run
-  // when its turn comes, as without threads.
-  std::optional<Scan> slots[2];
-  std::exception_ptr read_errors[2];
-  int reads = 0;
-  const auto read = [&](int slot) {
-    slots[slot].reset();
-    read_errors[slot] = nullptr;
-    try {
-      try {
-        slots[slot] = sequence->next();
-      } catch (const IoError& e) {
-        if (!options.skip_bad_scans) throw;
-        std::fprintf(stderr, "\nrun_sequence: warning: frame %d skipped: %s\n", reads, e.what());
-        ++skipped_scans;
-        slots[slot] = skipped_scan(*sequence, last_stamp, config.sensor.scan_period);
-      }
-    } catch (...) {
-      read_errors[slot] = std::current_exception();
-    }
-    if (slots[slot]) last_stamp = slots[slot]->stamp;
-    ++reads;
-  };
-  const bool read_ahead = pipeline->threads() > 1;
-  int current = 0;
+  ScanReader reader(*sequence, options, config.sensor.scan_period, pipeline->threads() > 1);
   try {
-    if (options.max_frames != 0) read(current);
     while (options.max_frames < 0 || frames < options.max_frames) {
-      if (read_errors[current]) std::rethrow_exception(read_errors[current]);
-      if (!slots[current]) break;
-      const int other = 1 - current;
-      const bool more = options.max_frames < 0 || frames + 1 < options.max_frames;
-      const Scan* next = nullptr;
-      if (read_ahead && more) {
-        read(other);
-        if (slots[other]) next = &*slots[other];
-      }
-      const Scan* scan = &*slots[current];
+      const Scan* scan = reader.take();
+      if (!scan) break;
       stamps.add(scan->stamp);
       motion_sensors.feed_until(scan->stamp, *pipeline);
-      const FrameResult& result = pipeline->process(*scan, next);
+      const FrameResult& result = pipeline->process(*scan, reader.next());
       if (const auto warning =
               fit.check(config.sensor, pipeline->filter_result().segmentation.image,
                         rows_from_ring(config.sensor, scan->has_ring))) {
@@ -524,14 +574,12 @@ int run(const Options& options) {
       outputs.add_loop(result.frame, result.loop, result.loop_closed, pipeline->keyframes());
       outputs.add_localization(result.frame, result.localization);
       progress.update(++frames);
-      if (!more) break;
-      if (!read_ahead) read(other);
-      current = other;
     }
   } catch (const std::exception& e) {
     failure = e.what();
-    pipeline.reset();  // first: a scan filtered ahead is read until its thread is joined
+    pipeline.reset();  // before the reader: a scan filtered ahead is read until it is joined
   }
+  skipped_scans = reader.skipped();
   progress.finish();
   if (!failure.empty()) {
     throw std::runtime_error(failure + " (after " + std::to_string(frames) +

@@ -4,9 +4,13 @@
 #include <cmath>
 
 #include "adaptive_lego_loam/core/common/rotations.h"
+#include "adaptive_lego_loam/core/common/workers.h"
 
 namespace adaptive_lego_loam {
 namespace {
+
+// Correspondences a chunk when the solver's evaluation is shared among threads.
+constexpr std::size_t kMatchesPerChunk = 256;
 
 template <int Rows, int Columns>
 using RowMajor = Eigen::Matrix<double, Rows, Columns, Eigen::RowMajor>;
@@ -123,39 +127,54 @@ void apply_huber(double delta, Eigen::Matrix<double, Rows, 1>& r, RowMajor<Rows,
 
 // Residuals of the chosen correspondences at `pose`, 3 per line ((m - through) x direction, the
 // distance vector) and 1 per plane; with `with_jacobian`, each residual's Jacobian row goes to
-// write_row(row, values).
+// write_row(row, values). With `shared`, the correspondences are split among the current workers:
+// write_row must then only write its own row.
 template <class Pose, class WriteRow>
 void evaluate_matches(const Pose& pose, const Correspondences& matches, MatchKinds kinds,
                       double huber_loss, bool with_jacobian, double* residuals,
-                      const WriteRow& write_row) {
+                      const WriteRow& write_row, bool shared = false) {
   constexpr int kParameters = Pose::kParameters;
-  int row = 0;
-  if (kinds != MatchKinds::kPlanes) {
-    for (const LineMatch& line : matches.lines) {
-      Eigen::Vector3d r = (pose.apply(line.point) - line.through).cross(line.direction);
-      RowMajor<3, kParameters> j;
-      if (with_jacobian) j = -skew(line.direction) * pose.jacobian(line.point);
-      apply_huber<3, kParameters>(huber_loss, r, with_jacobian ? &j : nullptr);
-      r *= line.scale;
-      if (with_jacobian) j *= line.scale;
-      for (int k = 0; k < 3; ++k, ++row) {
-        residuals[row] = r[k];
-        if (with_jacobian) write_row(row, j.row(k).data());
+  const std::size_t lines = kinds == MatchKinds::kPlanes ? 0 : matches.lines.size();
+  const std::size_t planes = kinds == MatchKinds::kLines ? 0 : matches.planes.size();
+  const auto evaluate_line = [&](std::size_t index) {
+    const LineMatch& line = matches.lines[index];
+    Eigen::Vector3d r = (pose.apply(line.point) - line.through).cross(line.direction);
+    RowMajor<3, kParameters> j;
+    if (with_jacobian) j = -skew(line.direction) * pose.jacobian(line.point);
+    apply_huber<3, kParameters>(huber_loss, r, with_jacobian ? &j : nullptr);
+    r *= line.scale;
+    if (with_jacobian) j *= line.scale;
+    for (int k = 0; k < 3; ++k) {
+      const int row = static_cast<int>(3 * index) + k;
+      residuals[row] = r[k];
+      if (with_jacobian) write_row(row, j.row(k).data());
+    }
+  };
+  const auto evaluate_plane = [&](std::size_t index) {
+    const PlaneMatch& plane = matches.planes[index];
+    Eigen::Matrix<double, 1, 1> r(plane.normal.dot(pose.apply(plane.point)) + plane.offset);
+    RowMajor<1, kParameters> j;
+    if (with_jacobian) j = plane.normal.transpose() * pose.jacobian(plane.point);
+    apply_huber<1, kParameters>(huber_loss, r, with_jacobian ? &j : nullptr);
+    r *= plane.scale;
+    if (with_jacobian) j *= plane.scale;
+    const int row = static_cast<int>(3 * lines + index);
+    residuals[row] = r[0];
+    if (with_jacobian) write_row(row, j.data());
+  };
+  const auto evaluate = [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      if (k < lines) {
+        evaluate_line(k);
+      } else {
+        evaluate_plane(k - lines);
       }
     }
-  }
-  if (kinds != MatchKinds::kLines) {
-    for (const PlaneMatch& plane : matches.planes) {
-      Eigen::Matrix<double, 1, 1> r(plane.normal.dot(pose.apply(plane.point)) + plane.offset);
-      RowMajor<1, kParameters> j;
-      if (with_jacobian) j = plane.normal.transpose() * pose.jacobian(plane.point);
-      apply_huber<1, kParameters>(huber_loss, r, with_jacobian ? &j : nullptr);
-      r *= plane.scale;
-      if (with_jacobian) j *= plane.scale;
-      residuals[row] = r[0];
-      if (with_jacobian) write_row(row, j.data());
-      ++row;
-    }
+  };
+  if (shared) {
+    for_chunks(lines + planes, kMatchesPerChunk, evaluate);
+  } else {
+    evaluate(0, 0, lines + planes);
   }
 }
 
@@ -181,7 +200,7 @@ bool EulerRegistrationCost::Evaluate(double const* const* parameters, double* re
     std::copy(values, values + 6, jacobian + 6 * row);
   };
   evaluate_matches(EulerPose(parameters[0]), matches_, kinds_, huber_loss_, jacobian != nullptr,
-                   residuals, write_row);
+                   residuals, write_row, true);
   return true;
 }
 
@@ -202,7 +221,7 @@ bool QuaternionRegistrationCost::Evaluate(double const* const* parameters, doubl
     if (translation) std::copy(values + 4, values + 7, translation + 3 * row);
   };
   evaluate_matches(QuaternionPose(parameters[0], parameters[1]), matches_, MatchKinds::kBoth,
-                   huber_loss_, rotation || translation, residuals, write_row);
+                   huber_loss_, rotation || translation, residuals, write_row, true);
   return true;
 }
 
