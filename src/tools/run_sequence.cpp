@@ -444,7 +444,7 @@ class ScanReader {
     const Scan* scan = scan_at(index);
     next_ = nullptr;
     if (scan && ahead_) {
-      next_ = scan_at(index + 1);
+      next_ = scan_at(index + 1, false);
       if (next_ && may_read(index + 2)) {
         reading_ = std::async(std::launch::async, [this] { read(); });
       }
@@ -460,14 +460,18 @@ class ScanReader {
 
   bool may_read(int index) const { return limit_ < 0 || index < limit_; }
 
-  // Scan `index` (read now unless it was read ahead), nullptr past the end.
-  const Scan* scan_at(int index) {
+  // Scan `index` (read now unless it was read ahead), nullptr past the end. A scan that could
+  // not be read throws its error when `taking` it, else is nullptr until then.
+  const Scan* scan_at(int index, bool taking = true) {
     if (!may_read(index)) return nullptr;
     join();
     while (reads_ <= index)
       read();
     const int slot = index % kSlots;
-    if (errors_[slot]) std::rethrow_exception(errors_[slot]);
+    if (errors_[slot]) {
+      if (taking) std::rethrow_exception(errors_[slot]);
+      return nullptr;
+    }
     return slots_[slot] ? &*slots_[slot] : nullptr;
   }
 

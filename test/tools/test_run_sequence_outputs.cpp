@@ -1,6 +1,7 @@
 // run_sequence's outputs: a run that fails leaves an earlier run's files as they were; with
-// --skip-bad-scans an unreadable scan is skipped and counted; a map folder that cannot take the
-// map stops the run before it starts; degeneration.csv holds what the degeneration is scored on.
+// --skip-bad-scans an unreadable scan is skipped and counted; threads change no pose; a map folder
+// that cannot take the map stops the run before it starts; degeneration.csv holds what the
+// degeneration is scored on.
 
 #include <gtest/gtest.h>
 
@@ -62,35 +63,76 @@ TEST(RunSequenceOutputs, AFailedRunLeavesTheEarlierRunsFiles) {
   ASSERT_FALSE(poses.empty());
 
   const fs::path broken = sequence_with_broken_scan("broken_seq", 3);
-  const auto [status, output] =
-      run_command(run_sequence("--input " + broken.string() + " --output " + out.string()));
-  EXPECT_EQ(status, 1) << output;
-  EXPECT_NE(output.find("0000000003.bin"), std::string::npos) << output;
-  EXPECT_NE(output.find("as they were"), std::string::npos) << output;
-  EXPECT_EQ(read_file(out / "poses_kitti.txt"), poses);
-  EXPECT_EQ(read_file(out / "summary.json"), summary);
-  for (const auto& entry : fs::directory_iterator(out))
-    EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos)
-        << "a temporary left behind: " << entry.path();
+  // With threads the broken scan is read while an earlier one is processed: it stops the run
+  // all the same.
+  for (const std::string threads : {"1", "2"}) {
+    SCOPED_TRACE(threads + " threads");
+    const auto [status, output] = run_command(run_sequence(
+        "--input " + broken.string() + " --output " + out.string() + " --threads " + threads));
+    EXPECT_EQ(status, 1) << output;
+    EXPECT_NE(output.find("0000000003.bin"), std::string::npos) << output;
+    EXPECT_NE(output.find("after 3 frames"), std::string::npos) << output;
+    EXPECT_NE(output.find("as they were"), std::string::npos) << output;
+    EXPECT_EQ(read_file(out / "poses_kitti.txt"), poses);
+    EXPECT_EQ(read_file(out / "summary.json"), summary);
+    for (const auto& entry : fs::directory_iterator(out))
+      EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos)
+          << "a temporary left behind: " << entry.path();
+  }
+}
+
+TEST(RunSequenceOutputs, ThreadsChangeNoByteOfThePoses) {
+  const std::string input = std::string(TEST_DATA_DIR) + "/kitti_seq07";
+  std::string reference;
+  for (const std::string threads : {"1", "2", "3"}) {
+    SCOPED_TRACE(threads + " threads");
+    const fs::path out = temp_path("outputs_threads_" + threads);
+    fs::remove_all(out);
+    const auto [status, output] = run_command(
+        run_sequence("--input " + input + " --output " + out.string() + " --threads " + threads));
+    ASSERT_EQ(status, 0) << output;
+    const std::string poses = read_file(out / "poses_kitti.txt");
+    if (reference.empty()) reference = poses;
+    EXPECT_EQ(poses, reference);
+    EXPECT_EQ(nlohmann::json::parse(read_file(out / "summary.json"))["threads"],
+              std::stoi(threads));
+  }
+  const fs::path out = temp_path("outputs_threads_max");
+  fs::remove_all(out);
+  const auto [status, output] = run_command(run_sequence(
+      "--input " + input + " --output " + out.string() + " --threads 2 --max-frames 3"));
+  ASSERT_EQ(status, 0) << output;
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary["frames"], 3);
+  EXPECT_EQ(reference.find(read_file(out / "poses_kitti.txt")), 0u)
+      << "the first three poses of the whole run";
 }
 
 TEST(RunSequenceOutputs, SkipBadScansPredictsTheScanAndCountsIt) {
   const fs::path broken = sequence_with_broken_scan("skip_seq", 2);
-  const fs::path out = temp_path("outputs_skip");
-  fs::remove_all(out);
-  const auto [status, output] = run_command(run_sequence(
-      "--input " + broken.string() + " --output " + out.string() + " --skip-bad-scans"));
-  ASSERT_EQ(status, 0) << output;
-  EXPECT_NE(output.find("frame 2 skipped"), std::string::npos) << output;
-  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
-  EXPECT_EQ(summary["skipped_scans"], 1);
-  EXPECT_EQ(summary["frames"], 5);
-  EXPECT_EQ(summary["input_stamps"]["missing_scans"], 0) << "the skipped scan keeps its stamp";
-  std::istringstream poses(read_file(out / "poses_kitti.txt"));
-  int lines = 0;
-  for (std::string line; std::getline(poses, line);)
-    ++lines;
-  EXPECT_EQ(lines, 5) << "one pose a frame, the skipped one predicted";
+  std::string one_thread_poses;
+  for (const std::string threads : {"1", "2"}) {
+    SCOPED_TRACE(threads + " threads");
+    const fs::path out = temp_path("outputs_skip_" + threads);
+    fs::remove_all(out);
+    const auto [status, output] =
+        run_command(run_sequence("--input " + broken.string() + " --output " + out.string() +
+                                 " --skip-bad-scans --threads " + threads));
+    ASSERT_EQ(status, 0) << output;
+    EXPECT_NE(output.find("frame 2 skipped"), std::string::npos) << output;
+    const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+    EXPECT_EQ(summary["skipped_scans"], 1);
+    EXPECT_EQ(summary["frames"], 5);
+    EXPECT_EQ(summary["input_stamps"]["missing_scans"], 0) << "the skipped scan keeps its stamp";
+    const std::string text = read_file(out / "poses_kitti.txt");
+    std::istringstream poses(text);
+    int lines = 0;
+    for (std::string line; std::getline(poses, line);)
+      ++lines;
+    EXPECT_EQ(lines, 5) << "one pose a frame, the skipped one predicted";
+    if (one_thread_poses.empty()) one_thread_poses = text;
+    EXPECT_EQ(text, one_thread_poses);
+  }
 }
 
 TEST(RunSequenceOutputs, AMapFolderThatHoldsSomethingElseStopsTheRunFirst) {
