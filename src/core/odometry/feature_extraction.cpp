@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "adaptive_lego_loam/core/common/timing.h"
 #include "adaptive_lego_loam/core/spatial/voxel_filter.h"
 
 namespace adaptive_lego_loam {
@@ -71,11 +72,9 @@ void FeatureExtractor::block_neighbours(const SegmentedCloud& cloud, int index) 
   }
 }
 
-void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,
-                                int row, FeatureSet& out) {
+void FeatureExtractor::pick_row(const SegmentedCloud& cloud, int row, FeatureSelection& out) {
   const int start = cloud.info.start_ring_index[row], end = cloud.info.end_ring_index[row];
   if (end - start < params_.sectors) return;
-  row_less_flat_.clear();
   for (int sector = 0; sector < params_.sectors; ++sector) {
     const int first = (start * (params_.sectors - sector) + end * sector) / params_.sectors;
     const int last =
@@ -104,8 +103,8 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
       if (picked_[i]) continue;
       if (++edges > params_.less_sharp_per_sector) break;
       label_[i] = edges <= params_.sharp_per_sector ? 2 : 1;
-      if (label_[i] == 2) out.sharp->push_back(to_cloud_point(points[i], static_cast<float>(row)));
-      out.less_sharp->push_back(to_cloud_point(points[i], static_cast<float>(row)));
+      if (label_[i] == 2) out.sharp.push_back({i, row});
+      out.less_sharp.push_back({i, row});
       block_neighbours(cloud, i);
     }
 
@@ -114,30 +113,62 @@ void FeatureExtractor::pick_row(const SegmentedCloud& cloud, const std::vector<S
       const int i = candidate.index;
       if (picked_[i]) continue;
       label_[i] = -1;
-      out.flat->push_back(to_cloud_point(points[i], static_cast<float>(row)));
+      out.flat.push_back({i, row});
       block_neighbours(cloud, i);
       if (++flats >= params_.flat_per_sector) break;
     }
     for (int i = first; i <= last; ++i) {
-      if (label_[i] <= 0)
-        row_less_flat_.push_back(to_cloud_point(points[i], static_cast<float>(row)));
+      if (label_[i] <= 0) out.less_flat.push_back({i, row});
     }
   }
-  *out.less_flat += *voxel_filter_(row_less_flat_, params_.less_flat_voxel);
+  out.group_ends.push_back(out.less_flat.size());
 }
 
 void FeatureExtractor::extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,
                                const std::vector<ScanPoint>& outliers, FeatureSet& out) {
-  out.clear();
-  // Room for as many as the last scan had: the cloud grows row by row, and each reallocation
-  // of a large block costs fresh pages.
-  out.less_flat->reserve(less_flat_capacity_);
+  select(cloud, selection_);
+  assemble(selection_, points, outliers, out);
+}
+
+void FeatureExtractor::select(const SegmentedCloud& cloud, FeatureSelection& out) {
+  Stopwatch watch;
+  for (std::vector<FeatureSelection::Pick>* picks :
+       {&out.sharp, &out.less_sharp, &out.flat, &out.less_flat})
+    picks->clear();
+  out.group_ends.clear();
   compute_curvature(cloud);
   mark_unreliable(cloud);
   label_.assign(cloud.info.range.size(), 0);
   const int rows = static_cast<int>(cloud.info.start_ring_index.size());
   for (int row = 0; row < rows; ++row)
-    pick_row(cloud, points, row, out);
+    pick_row(cloud, row, out);
+  out.ms = watch.elapsed_ms();
+}
+
+void FeatureExtractor::assemble(const FeatureSelection& selection,
+                                const std::vector<ScanPoint>& points,
+                                const std::vector<ScanPoint>& outliers, FeatureSet& out) {
+  out.clear();
+  const auto add = [&points](const std::vector<FeatureSelection::Pick>& picks, Cloud& cloud) {
+    for (const FeatureSelection::Pick& pick : picks)
+      cloud.push_back(to_cloud_point(points[pick.index], static_cast<float>(pick.row)));
+  };
+  add(selection.sharp, *out.sharp);
+  add(selection.less_sharp, *out.less_sharp);
+  add(selection.flat, *out.flat);
+  // Room for as many as the last scan had: the cloud grows row by row, and each reallocation
+  // of a large block costs fresh pages.
+  out.less_flat->reserve(less_flat_capacity_);
+  std::size_t begin = 0;
+  for (const std::size_t end : selection.group_ends) {
+    row_less_flat_.clear();
+    for (std::size_t k = begin; k < end; ++k) {
+      const FeatureSelection::Pick& pick = selection.less_flat[k];
+      row_less_flat_.push_back(to_cloud_point(points[pick.index], static_cast<float>(pick.row)));
+    }
+    *out.less_flat += *voxel_filter_(row_less_flat_, params_.less_flat_voxel);
+    begin = end;
+  }
   for (const ScanPoint& p : outliers)
     out.outliers->push_back(to_cloud_point(p, -1.0f));
   less_flat_capacity_ = out.less_flat->size() + out.less_flat->size() / 8;

@@ -17,7 +17,7 @@ LidarOdometry::LidarOdometry(const SensorParams& sensor, const FeatureParams& fe
       registration_(odometry, sensor.beam_angles_deg) {}
 
 void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out,
-                            const MotionPrediction* sensors) {
+                            const MotionPrediction* sensors, const FeatureSelection* selection) {
   Stopwatch watch;
   out.times.clear();
   points_ = cloud.points;
@@ -40,8 +40,13 @@ void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, Odometry
     }
   }
   out.times.add("deskew", watch.lap_ms());
-  extractor_.extract(cloud, points_, outliers_, out.features);
-  out.times.add("features", watch.lap_ms());
+  if (selection) {
+    extractor_.assemble(*selection, points_, outliers_, out.features);
+    out.times.add("features", watch.lap_ms() + selection->ms);
+  } else {
+    extractor_.extract(cloud, points_, outliers_, out.features);
+    out.times.add("features", watch.lap_ms());
+  }
 
   const Eigen::Isometry3d prediction = sensors && sensors->motion  ? sensors->motion->motion
                                        : params_.constant_velocity ? last_motion_

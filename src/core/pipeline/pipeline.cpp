@@ -81,14 +81,16 @@ Pipeline::Pipeline(const Config& config)
       filter_(config),
       motion_(config),
       odometry_(config.sensor, config.features, config.odometry),
-      mapping_(config) {}
+      mapping_(config),
+      selector_(config.features) {}
 
 Pipeline::Pipeline(const Config& config, std::vector<Keyframe> map, const Eigen::Isometry3d& start)
     : config_(config),
       filter_(config),
       motion_(config),
       odometry_(config.sensor, config.features, config.odometry),
-      mapping_(config, std::move(map), start) {}
+      mapping_(config, std::move(map), start),
+      selector_(config.features) {}
 
 void Pipeline::set_threads(int threads) {
   if (ahead_of_) throw std::logic_error("Pipeline: threads changed while a scan runs ahead");
@@ -110,12 +112,18 @@ const FrameResult& Pipeline::process(const Scan& scan, const Scan* next) {
     if (announced != std::make_pair(scan.stamp, scan.points.size()))
       throw std::logic_error("Pipeline: the scan processed is not the one announced as next");
     std::swap(filtered_, filtered_ahead_);
+    std::swap(selection_, selection_ahead_);
+    selected_ = true;
   } else {
     filter_.process(scan, filtered_);
+    selected_ = false;
   }
   if (next && workers_) {
     ahead_of_ = std::make_pair(next->stamp, next->points.size());
-    workers_->start_background([this, next] { filter_.process(*next, filtered_ahead_); });
+    workers_->start_background([this, next] {
+      filter_.process(*next, filtered_ahead_);
+      selector_.select(filtered_ahead_.segmentation.cloud, selection_ahead_);
+    });
   }
   const UseWorkers use_workers(workers_.get());
   result_.times.append(filtered_.times());
@@ -132,7 +140,8 @@ const FrameResult& Pipeline::process(const Scan& scan, const Scan* next) {
     result_.wheel_used = motion_.status().wheel_in_use;
   }
 
-  odometry_.process(filtered_.segmentation.cloud, scan.has_time, odometry_out_, sensors);
+  odometry_.process(filtered_.segmentation.cloud, scan.has_time, odometry_out_, sensors,
+                    selected_ ? &selection_ : nullptr);
   result_.times.append(odometry_out_.times);
   result_.odometry = odometry_out_.odometry;
   result_.odometry_pose = odometry_out_.pose;

@@ -24,19 +24,38 @@ struct FeatureSet {
   void clear();
 };
 
+// Which points of a segmented cloud become features, in the order they are taken. The choice
+// depends on the ranges alone, not on the points' de-skewed positions: it can be made while the
+// previous scan is still being registered.
+struct FeatureSelection {
+  struct Pick {
+    int32_t index;  // in the segmented cloud
+    int32_t row;
+  };
+  std::vector<Pick> sharp, less_sharp, flat;
+  // Each picked row's less-flat points, voxel-filtered row by row: the picks of row group k are
+  // less_flat[group_ends[k - 1] .. group_ends[k]).
+  std::vector<Pick> less_flat;
+  std::vector<std::size_t> group_ends;
+  double ms = 0.0;  // what choosing took (stage "features")
+};
+
 class FeatureExtractor {
  public:
   explicit FeatureExtractor(const FeatureParams& params);
   // `points` and `outliers` are the segmented cloud's points and outliers, possibly de-skewed,
-  // in its order.
+  // in its order. The same as select() then assemble().
   void extract(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points,
                const std::vector<ScanPoint>& outliers, FeatureSet& out);
+  void select(const SegmentedCloud& cloud, FeatureSelection& out);
+  // The clouds of a selection from the points (voxel-filtering the less-flat ones row by row).
+  void assemble(const FeatureSelection& selection, const std::vector<ScanPoint>& points,
+                const std::vector<ScanPoint>& outliers, FeatureSet& out);
 
  private:
   void compute_curvature(const SegmentedCloud& cloud);
   void mark_unreliable(const SegmentedCloud& cloud);
-  void pick_row(const SegmentedCloud& cloud, const std::vector<ScanPoint>& points, int row,
-                FeatureSet& out);
+  void pick_row(const SegmentedCloud& cloud, int row, FeatureSelection& out);
   void block_neighbours(const SegmentedCloud& cloud, int index);
 
   FeatureParams params_;
@@ -51,6 +70,7 @@ class FeatureExtractor {
   std::vector<float> curvature_;
   std::vector<uint8_t> picked_;  // no longer available for selection
   std::vector<int8_t> label_;    // 2 sharp, 1 less sharp, -1 flat, 0 none
+  FeatureSelection selection_;   // extract()'s
   Cloud row_less_flat_;
   std::size_t less_flat_capacity_ = 0;  // reserved for the next scan
   VoxelFilter voxel_filter_;

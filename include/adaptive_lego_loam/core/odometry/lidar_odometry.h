@@ -34,8 +34,10 @@ class LidarOdometry {
                 const OdometryParams& odometry);
   // `has_time`: whether the cloud's points carry their time in the sweep. `sensors`: the motion
   // sensors' prediction of this scan, if any: its sweep de-skews, its motion is the guess.
+  // `selection`: the cloud's features chosen ahead (FeatureExtractor::select), if they were.
   void process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out,
-               const MotionPrediction* sensors = nullptr);
+               const MotionPrediction* sensors = nullptr,
+               const FeatureSelection* selection = nullptr);
   // The last scan's motion as mapping refined it (MappingOutput::motion) replaces the odometry's
   // own estimate as the constant-velocity model that de-skews and predicts the next scan:
   // mapping's is far better on 16-beam sensors. Call it only when uses_mapped_motion().

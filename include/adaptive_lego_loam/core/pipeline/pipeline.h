@@ -122,8 +122,12 @@ class Pipeline {
   MappingOutput mapping_out_;
   int frames_ = 0;
   FrameResult result_;
-  // The next scan's filter result while it runs ahead, and which scan it is.
+  // The next scan's filter result and feature choice while they run ahead, and which scan it is
+  // (with one thread, none: the odometry chooses the features itself).
   AmbientFilterResult filtered_ahead_;
+  FeatureExtractor selector_;
+  FeatureSelection selection_, selection_ahead_;
+  bool selected_ = false;  // selection_ holds this scan's
   std::optional<std::pair<double, std::size_t>> ahead_of_;
   // Last: destroyed first, its threads joined before what they work on goes.
   std::unique_ptr<Workers> workers_;
