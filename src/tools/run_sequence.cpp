@@ -453,7 +453,11 @@ class ScanReader {
   }
   // With reading ahead, the scan the next take() returns (nullptr: none, or not reading ahead).
   const Scan* next() const { return next_; }
-  int skipped() const { return skipped_; }
+  // Once no read is running any more.
+  int skipped() {
+    join();
+    return skipped_;
+  }
 
  private:
   static constexpr int kSlots = 3;
@@ -558,9 +562,8 @@ int run(const Options& options) {
   std::string failure;
   ScanReader reader(*sequence, options, config.sensor.scan_period, pipeline->threads() > 1);
   try {
-    while (options.max_frames < 0 || frames < options.max_frames) {
-      const Scan* scan = reader.take();
-      if (!scan) break;
+    // The reader stops at --max-frames.
+    while (const Scan* scan = reader.take()) {
       stamps.add(scan->stamp);
       motion_sensors.feed_until(scan->stamp, *pipeline);
       const FrameResult& result = pipeline->process(*scan, reader.next());

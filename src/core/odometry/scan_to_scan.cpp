@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <cstdio>
 #include "adaptive_lego_loam/core/common/workers.h"
 #include "adaptive_lego_loam/core/odometry/observability.h"
 #include "adaptive_lego_loam/core/odometry/residuals.h"

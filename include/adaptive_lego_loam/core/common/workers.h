@@ -1,9 +1,10 @@
 #pragma once
 // Threads beside the caller's for two kinds of work: one task run ahead in the background (the
-// next scan's ambient filter while this one is registered), and loops over independent items
-// split into chunks that the caller and every idle thread take in turn. Each chunk writes only its
-// own outputs, so the results do not depend on which thread ran it: the same to the last bit as
-// one thread. With one thread (the default) everything runs on the caller, in order.
+// next scan's ambient filter and feature choice while this one is registered), and loops over
+// independent items split into chunks that the caller and every idle thread take in turn. Each
+// chunk writes only its own outputs, so the results do not depend on which thread ran it: the same
+// to the last bit as one thread. With one thread (the default) everything runs on the caller, in
+// order.
 
 #include <cstddef>
 #include <functional>
@@ -27,9 +28,9 @@ class Workers {
   void start_background(std::function<void()> task);
   void wait_background();
 
-  // body(chunk, begin, end) for the `chunks` consecutive pieces of [0, count), the last ones one
-  // item shorter when count does not divide; returns when all have run, rethrowing the first
-  // exception a chunk threw.
+  // body(chunk, begin, end) for the `chunks` consecutive pieces of [0, count) (at most `count`;
+  // their sizes differ by one at most); returns when all have run, rethrowing the first exception
+  // a chunk threw.
   void for_chunks(std::size_t count, std::size_t chunks,
                   const std::function<void(std::size_t, std::size_t, std::size_t)>& body);
 

@@ -87,9 +87,9 @@ class Pipeline {
   Pipeline(const Config& config, std::vector<Keyframe> map, const Eigen::Isometry3d& start);
   const FrameResult& process(const Scan& scan);
   // The same, with the next scan known: with more than one thread (set_threads), its ambient
-  // filter runs on a second thread while this scan is registered, and the scan-to-map search is
-  // shared by idle threads; the poses are the same to the last bit. `next` must stay unchanged
-  // until the next call, which must process it.
+  // filter and feature choice run on a second thread while this scan is registered, and the
+  // searches are shared by idle threads; the poses are the same to the last bit. `next` must stay
+  // unchanged until the next call, which must process it.
   const FrameResult& process(const Scan& scan, const Scan* next);
   // 1 (the default): everything on the caller's thread.
   void set_threads(int threads);
