@@ -75,6 +75,11 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
     ROS_INFO("map_optimization: localizing on %s (%zu keyframes); waiting for the first scan",
              map_folder_.c_str(), map_keyframes_.size());
   }
+  if (config.odometry.follow_test_shift > 0.0) {
+    ROS_WARN(
+        "map_optimization: odometry.follow_test_shift is on, but the graph does not pass on which "
+        "scans the odometry held: scan-to-map does not hold them (run_sequence does)");
+  }
   mapping_ = make_mapping();
   const int queue = private_nh.param("queue_size", 5);
   mapped_pub_ = nh.advertise<nav_msgs::Odometry>("aft_mapped_to_init", queue);

@@ -556,6 +556,7 @@ int run(const Options& options) {
   Stopwatch wall(Clock::kWall);
   int frames = 0, empty_scans = 0, motion_gated_scans = 0, skipped_scans = 0;
   int odometry_rejected_motions = 0;
+  int odometry_held_scans = 0;
   ScanStamps stamps(config.sensor.scan_period);
   ConfigFitWarning fit(config.source, options.input);
   LocalizationCounts localization;
@@ -576,6 +577,7 @@ int run(const Options& options) {
       empty_scans += !result.valid_scan;
       motion_gated_scans += result.motion_gated;
       odometry_rejected_motions += result.odometry.rejected;
+      odometry_held_scans += result.odometry.held_direction.has_value();
       localization.add(result.localization);
       outputs.add(result, pipeline->filter_result(), config.mapping);
       outputs.add_loop(result.frame, result.loop, result.loop_closed, pipeline->keyframes());
@@ -656,6 +658,7 @@ int run(const Options& options) {
   if (!sensors.is_null()) summary["motion_sensors"] = sensors;
   summary["motion_gated_scans"] = motion_gated_scans;
   summary["odometry_rejected_motions"] = odometry_rejected_motions;
+  summary["odometry_held_scans"] = odometry_held_scans;
   summary["threads"] = options.threads;
   summary["wall_time_s"] = wall_s;
   summary["frames_per_second"] = wall_s > 0 ? frames / wall_s : 0.0;

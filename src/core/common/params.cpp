@@ -271,6 +271,8 @@ void read_odometry(SectionReader& in, OdometryParams& o) {
   in.number("range_weight_fit_error", o.range_weight_fit_error, 0.0, 10.0);
   in.number("range_weight_noise", o.range_weight_noise, 0.001, 1.0);
   in.number("residual_sigma", o.residual_sigma, 1e-4, 10.0);
+  in.number("follow_test_shift", o.follow_test_shift, 0.0, 10.0);
+  in.number("follow_test_max", o.follow_test_max, 0.0, 10.0);
   in.reject_unknown_keys();
 }
 

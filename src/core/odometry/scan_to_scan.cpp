@@ -216,10 +216,36 @@ OdometryResult ScanToScanOdometry::register_scan(const FeatureSet& current,
     if (result.registered) {
       result.information = correspondence_information(matches, result.motion, params_.huber_loss,
                                                       params_.residual_sigma);
+      if (params_.follow_test_shift > 0.0) follow_test(current, guess, iterations, result);
     }
   }
   keep(current);
   return result;
+}
+
+// Where the scene fixes the motion along the direction of travel, a registration started from a
+// guess moved along it comes back to the same motion; where it does not (smooth walls, whose
+// rings and ring-made edges stay put in the sensor frame), the result moves with the guess, less
+// what those features pull toward standing still. The information of those features says they fix
+// the motion to centimetres; their follow does not.
+void ScanToScanOdometry::follow_test(const FeatureSet& current, const Eigen::Isometry3d& guess,
+                                     int iterations, OdometryResult& result) const {
+  const double shift = params_.follow_test_shift;
+  // Below a few centimetres a scan the guess's direction is its noise, not a direction of travel.
+  constexpr double kMinTravel = 0.02;  // m
+  if (guess.translation().norm() < kMinTravel) return;
+  const Eigen::Vector3d direction = guess.translation().normalized();
+  Eigen::Isometry3d shifted = guess;
+  shifted.translation() += shift * direction;
+  const OdometryResult other = align(current, shifted, iterations);
+  if (!other.registered) return;
+  result.follow = direction.dot(other.motion.translation() - result.motion.translation()) / shift;
+  if (result.follow <= params_.follow_test_max) return;
+  result.motion.translation() +=
+      direction.dot(guess.translation() - result.motion.translation()) * direction;
+  result.information =
+      discounted_along(result.information, result.motion.linear().transpose() * direction, 0.0);
+  result.held_direction = direction;
 }
 
 std::vector<OdometryResult> ScanToScanOdometry::align_each(

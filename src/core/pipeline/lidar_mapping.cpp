@@ -21,6 +21,17 @@ Config localization_config(Config config) {
   return config;
 }
 
+// `pose` with its motion from `previous` along `direction` (previous' frame) as `predicted`'s.
+Eigen::Isometry3d held_along(const Eigen::Isometry3d& previous, const Eigen::Isometry3d& predicted,
+                             const Eigen::Isometry3d& pose, const Eigen::Vector3d& direction) {
+  Eigen::Isometry3d motion = previous.inverse() * pose;
+  const Eigen::Vector3d predicted_step = (previous.inverse() * predicted).translation();
+  motion.translation() += direction.dot(predicted_step - motion.translation()) * direction;
+  Eigen::Isometry3d held = previous * motion;
+  held.linear() = Eigen::Quaterniond(held.linear()).normalized().toRotationMatrix();
+  return held;
+}
+
 }  // namespace
 
 LidarMapping::LidarMapping(const Config& config)
@@ -270,7 +281,8 @@ SensorPriors LidarMapping::sensor_priors(const MotionPrediction* sensors,
 void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose,
                            double stamp, const std::optional<WeakDirectionPrior>& prior,
                            MappingOutput& out, const MotionPrediction* sensors,
-                           const std::optional<SceneDegeneration>& scene) {
+                           const std::optional<SceneDegeneration>& scene,
+                           const std::optional<Eigen::Vector3d>& odometry_held) {
   Stopwatch watch;
   out.times.clear();
   const Eigen::Isometry3d motion = last_odometry_pose_
@@ -286,6 +298,7 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   // grow scan after scan.
   pose.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
   const Eigen::Isometry3d previous_pose = pose_;
+  const Eigen::Isometry3d predicted_pose = pose;
   out.match = MapMatchResult();
   out.match.pose = pose;
   out.localization.reset();
@@ -313,6 +326,13 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
   }
   const bool aligned =
       out.localization && out.localization->alignment && out.localization->alignment->accepted();
+  if (odometry_held && !aligned) {
+    // Where the odometry found the scan blind, the map's rings pull toward standing still too.
+    pose = held_along(previous_pose, predicted_pose, pose, *odometry_held);
+    out.match.information =
+        discounted_along(out.match.information,
+                         pose.linear().transpose() * previous_pose.linear() * *odometry_held, 0.0);
+  }
   pose_ = pose;
   if (sensors && sensors->gravity) map_gravity_.add(pose_.linear(), *sensors->gravity);
   // The velocity exists once two scans have been mapped (an alignment's jump is not motion).

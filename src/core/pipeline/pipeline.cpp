@@ -154,7 +154,8 @@ const FrameResult& Pipeline::process(const Scan& scan, const Scan* next) {
 
   const std::optional<SceneDegeneration> scene = scene_degeneration(filtered_);
   mapping_.process(features, odometry_out_.pose, scan.stamp,
-                   weak_direction_prior(config_.mapping, filtered_), mapping_out_, sensors, scene);
+                   weak_direction_prior(config_.mapping, filtered_), mapping_out_, sensors, scene,
+                   odometry_out_.odometry.held_direction);
   if (motion_.active()) {
     Stopwatch watch;
     // What the LiDAR saw of this scan's motion teaches the sensors (biases, scale, velocity).

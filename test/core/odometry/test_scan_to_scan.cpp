@@ -272,3 +272,23 @@ TEST(ScanToScan, TheInformationSaysWhichWayACorridorLeavesTheMotionOpen) {
   EXPECT_GT(std::abs(seen.weakest_direction().x()), 0.95) << seen.weakest_direction().transpose();
   EXPECT_GT(seen.weakest_sigma(), yard_seen.weakest_sigma());
 }
+
+// Where the scene fixes the motion, the registration from the shifted guess comes back: nothing
+// is held and the result is the one without the test, to the last bit.
+TEST(ScanToScan, AScanThatFixesItsMotionIsNotHeld) {
+  const Eigen::Isometry3d step = motion_of(0.8, 0.15, 2.0);
+  OdometryParams params;
+  params.follow_test_shift = 0.1;
+  const auto registered = [&](const OdometryParams& with) {
+    ScanToScanOdometry odometry{with};
+    odometry.register_scan(features_in(yard(), Eigen::Isometry3d::Identity()), step);
+    return odometry.register_scan(features_in(yard(), step), step);
+  };
+  const OdometryResult plain = registered(OdometryParams());
+  const OdometryResult tested = registered(params);
+  ASSERT_TRUE(tested.registered);
+  EXPECT_FALSE(tested.held_direction);
+  EXPECT_LT(std::abs(tested.follow), 0.2);
+  EXPECT_TRUE(tested.motion.matrix() == plain.motion.matrix());
+  EXPECT_TRUE(tested.information == plain.information);
+}

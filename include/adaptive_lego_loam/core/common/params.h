@@ -162,6 +162,14 @@ struct OdometryParams {
   // The 1-sigma error of a scan-to-scan residual (m): the information of the registration and the
   // covariance of the odometry's pose (MappingParams::residual_sigma's counterpart).
   double residual_sigma = 0.4;
+  // > 0: the follow test (m). Each scan is registered a second time from its guess moved this far
+  // along the guessed direction of travel; where the result moves with the guess by more than
+  // follow_test_max of the shift, the scan does not fix the motion along that direction (a smooth
+  // tunnel, whose rings and edges stay where they are in the sensor frame and pull the motion
+  // toward standing still), and the motion along it is kept at the guess, by scan-to-scan and by
+  // scan-to-map. 0: off.
+  double follow_test_shift = 0.0;
+  double follow_test_max = 0.5;
 };
 
 // Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).

@@ -5,6 +5,7 @@
 // and pitch; then edges fix x, y and yaw) or one joint 6-DoF solve.
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <vector>
 
 #include "adaptive_lego_loam/core/common/params.h"
@@ -31,6 +32,11 @@ struct OdometryResult {
   // OdometryParams::residual_sigma, at `motion`, in the current scan's frame); zero unless
   // registered. Only register_scan fills it.
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  // The follow test (OdometryParams::follow_test_shift) found the scan blind along this direction
+  // (unit, in the previous scan's frame, as `motion`'s translation): `motion` keeps the guess's
+  // translation along it, and `information` says nothing about it.
+  std::optional<Eigen::Vector3d> held_direction;
+  double follow = 0.0;  // how far the result moved with the shifted guess (share of the shift)
 };
 
 class ScanToScanOdometry {
@@ -54,6 +60,9 @@ class ScanToScanOdometry {
   OdometryResult align(const FeatureSet& current, const Eigen::Isometry3d& guess, int iterations,
                        Correspondences* final_matches = nullptr) const;
   void keep(const FeatureSet& current);
+  // OdometryParams::follow_test_shift on `result`, registered from `guess`.
+  void follow_test(const FeatureSet& current, const Eigen::Isometry3d& guess, int iterations,
+                   OdometryResult& result) const;
   // Each point's correspondence (when it has one), in the points' order.
   void find_edge_matches(const Cloud& sharp, const Eigen::Isometry3d& pose,
                          Correspondences& matches) const;

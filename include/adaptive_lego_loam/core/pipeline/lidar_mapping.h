@@ -63,10 +63,13 @@ class LidarMapping {
   // `odometry_pose`: the scan's pose in the odometry frame; the map pose is predicted from the
   // odometry's motion since the previous scan, then refined against the local map. `sensors`:
   // the motion sensors' prediction of this scan (its motion and gravity priors), if any.
+  // `odometry_held`: the direction the odometry kept at its guess (OdometryResult::held_direction,
+  // the previous scan's frame): scan-to-map keeps the motion along it as predicted too.
   void process(const FeatureSet& features, const Eigen::Isometry3d& odometry_pose, double stamp,
                const std::optional<WeakDirectionPrior>& prior, MappingOutput& out,
                const MotionPrediction* sensors = nullptr,
-               const std::optional<SceneDegeneration>& scene = std::nullopt);
+               const std::optional<SceneDegeneration>& scene = std::nullopt,
+               const std::optional<Eigen::Vector3d>& odometry_held = std::nullopt);
 
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
   bool localizing() const { return localization_.has_value(); }
