@@ -316,9 +316,9 @@ TEST(SimOdometry, AHighwayEnteredAtSpeedIsTrackedFromItsFirstScan) {
 // The featureless tunnel on the LiDAR alone (kitti.yaml, 240 scans, tuning seed 4): its smooth
 // walls fix nothing along the road, and their rings, which stay where they are in the sensor
 // frame, pull the odometry toward standing still, about a tenth of the speed a scan, until the
-// estimate stops inside. With the follow test (odometry.follow_test_shift) the scans that follow
-// a shifted guess keep the motion along the road at the guess: the estimate keeps going at the
-// speed it entered with (the truth brakes inside, so it runs ahead of it).
+// estimate stops inside (0.63 of the true path). With the follow test (odometry.follow_test_shift)
+// the scans that follow a shifted guess keep the motion along the road at the guess, and the
+// estimate keeps going (0.94).
 TEST(SimOdometry, TheFollowTestKeepsTheBareTunnelGoing) {
   ALEGO_SKIP_WHEN_SANITIZED();
   SceneRequest request = scene_request(ScenarioKind::kUrban, 4, 240);
