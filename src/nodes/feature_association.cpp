@@ -9,6 +9,7 @@
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/motion_prior_conversions.h"
 #include "adaptive_lego_loam/ros/motion_sensor_conversions.h"
+#include "adaptive_lego_loam/ros/odometry_hold_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
 #include "adaptive_lego_loam/ros/shared_publish.h"
 
@@ -89,6 +90,8 @@ FeatureAssociationNode::FeatureAssociationNode(ros::NodeHandle& nh, ros::NodeHan
   odometry_pub_ = nh.advertise<nav_msgs::Odometry>("laser_odom_to_init", queue);
   sharp_pub_ = nh.advertise<sensor_msgs::PointCloud2>("laser_cloud_sharp", 1);
   flat_pub_ = nh.advertise<sensor_msgs::PointCloud2>("laser_cloud_flat", 1);
+  if (config.odometry.follow_test_shift > 0.0)
+    hold_pub_ = nh.advertise<OdometryHold>("odometry_hold", queue);
   cloud_sub_ = nh.subscribe("segmented_cloud", queue, &FeatureAssociationNode::on_cloud, this);
   info_sub_ = nh.subscribe("segmented_cloud_info", queue, &FeatureAssociationNode::on_info, this);
   outlier_sub_ = nh.subscribe("outlier_cloud", queue, &FeatureAssociationNode::on_outliers, this);
@@ -300,6 +303,7 @@ void FeatureAssociationNode::process(const ros_bridge::StampMatcher::Group& grou
   }
   times.append(out_.times);
   if (out_.odometry.registered) remember_weakest(observability(out_.odometry.information));
+  held_scans_ += out_.odometry.held_direction.has_value();
   if (out_.odometry.rejected) {
     ++rejected_motions_;
     warn_(
@@ -321,6 +325,9 @@ void FeatureAssociationNode::add_diagnostics(ros_bridge::HealthStatus& status) {
     status.raise(ros_bridge::HealthLevel::kWarn, "implausible odometry motions rejected");
   }
   rejected_motions_reported_ = rejected;
+  if (hold_pub_) {
+    status.add("scans held along their travel (follow test, total)", std::to_string(held_scans_));
+  }
   {
     std::lock_guard<std::mutex> lock(weakest_mutex_);
     if (!weakest_text_.empty())
@@ -364,6 +371,8 @@ void FeatureAssociationNode::publish(const std_msgs::Header& header,
       ros_bridge::odometry_to_ros(out_.pose, odometry_header, header.frame_id);
   ros_bridge::set_pose_covariance(out_.pose_covariance, odometry.pose);
   publish_shared(odometry_pub_, std::move(odometry));
+  // Every scan's, so that map_optimization pairs it.
+  if (hold_pub_) publish_shared(hold_pub_, ros_bridge::odometry_hold_to_ros(out_.odometry, header));
   if (!relay_) return;
   // Every scan's, so that map_optimization pairs it; both flags false when LiDAR-only.
   MotionPriors priors = ros_bridge::motion_priors_to_ros(prediction, header);

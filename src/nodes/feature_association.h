@@ -82,6 +82,7 @@ class FeatureAssociationNode {
   // diagnostics timer reads it.
   std::atomic<long> rejected_motions_{0};
   long rejected_motions_reported_ = 0;
+  std::atomic<long> held_scans_{0};  // the follow test's (OdometryResult::held_direction)
   // The last registration's weakest direction (sensor frame) and sigma, for the diagnostics timer.
   std::mutex weakest_mutex_;
   std::string weakest_text_;
@@ -107,6 +108,7 @@ class FeatureAssociationNode {
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   ros::Subscriber imu_sub_, wheel_sub_, map_match_sub_;
   ros::Publisher priors_pub_, gravity_pub_;
+  ros::Publisher hold_pub_;  // /odometry_hold, with the follow test on only
   ros::SteadyTimer release_timer_;
   std::optional<ros_bridge::MotionSensorDiagnostics> sensor_diagnostics_;
 

@@ -14,6 +14,7 @@
 #include "adaptive_lego_loam/ros/degeneration_conversions.h"
 #include "adaptive_lego_loam/ros/feature_conversions.h"
 #include "adaptive_lego_loam/ros/motion_prior_conversions.h"
+#include "adaptive_lego_loam/ros/odometry_hold_conversions.h"
 #include "adaptive_lego_loam/ros/pose_conversions.h"
 #include "adaptive_lego_loam/ros/shared_publish.h"
 #include "adaptive_lego_loam/ros/uncertainty_markers.h"
@@ -21,10 +22,13 @@
 namespace adaptive_lego_loam::nodes {
 namespace {
 
-std::vector<std::string> slot_names(bool with_motion_priors) {
+// The optional slots after the fixed ones, in this order (MapOptimizationNode::priors_slot,
+// hold_slot).
+std::vector<std::string> slot_names(bool with_motion_priors, bool with_hold) {
   std::vector<std::string> names = {"laser_cloud_corner_last", "laser_cloud_surf_last",
                                     "outlier_cloud_last", "laser_odom_to_init", "degeneration"};
   if (with_motion_priors) names.push_back("motion_priors");
+  if (with_hold) names.push_back("odometry_hold");
   return names;
 }
 
@@ -54,9 +58,10 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
       save_on_exit_(private_nh.param<std::string>("save_map_on_exit", "")),
       workers_(ros_bridge::load_workers(private_nh)),
       uses_motion_sensors_(private_nh.param("motion_sensors", false)),
+      uses_odometry_hold_(config.odometry.follow_test_shift > 0.0),
       degenerate_state_(config.mapping.degenerate_translation_sigma),
       frames_(ros_bridge::load_frame_names(private_nh)),
-      pairing_("map_optimization", slot_names(uses_motion_sensors_),
+      pairing_("map_optimization", slot_names(uses_motion_sensors_, uses_odometry_hold_),
                private_nh.param("max_pending_scans", 10), private_nh.param("warning_period", 5.0)),
       surround_throttle_(private_nh.param("surround_period", 1.0)),
       path_throttle_(private_nh.param("path_period", 1.0)),
@@ -74,11 +79,6 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
     map_keyframes_ = std::move(map.keyframes);
     ROS_INFO("map_optimization: localizing on %s (%zu keyframes); waiting for the first scan",
              map_folder_.c_str(), map_keyframes_.size());
-  }
-  if (config.odometry.follow_test_shift > 0.0) {
-    ROS_WARN(
-        "map_optimization: odometry.follow_test_shift is on, but the graph does not pass on which "
-        "scans the odometry held: scan-to-map does not hold them (run_sequence does)");
   }
   mapping_ = make_mapping();
   const int queue = private_nh.param("queue_size", 5);
@@ -103,6 +103,10 @@ MapOptimizationNode::MapOptimizationNode(ros::NodeHandle& nh, ros::NodeHandle& p
   if (uses_motion_sensors_) {
     subscriptions_.push_back(
         nh.subscribe("motion_priors", queue, &MapOptimizationNode::on_motion_priors, this));
+  }
+  if (uses_odometry_hold_) {
+    subscriptions_.push_back(
+        nh.subscribe("odometry_hold", queue, &MapOptimizationNode::on_odometry_hold, this));
   }
   if (mapping_->localizing()) {
     initial_pose_sub_ = nh.subscribe("initialpose", 1, &MapOptimizationNode::on_initial_pose, this);
@@ -250,14 +254,22 @@ void MapOptimizationNode::map_scan(const ros_bridge::StampMatcher::Group& group)
   // The motion sensors' priors of the scan, as the offline pipeline passes them (none: nullptr).
   std::optional<MotionPrediction> sensors;
   if (uses_motion_sensors_) {
-    sensors = ros_bridge::motion_priors_from_ros(*group.get<MotionPriors>(kPriors), topic(kPriors));
+    sensors = ros_bridge::motion_priors_from_ros(*group.get<MotionPriors>(priors_slot()),
+                                                 topic(priors_slot()));
     if (sensors->empty()) sensors.reset();
+  }
+  // The direction the odometry held at its guess (the follow test), as the offline pipeline
+  // passes it.
+  std::optional<Eigen::Vector3d> held;
+  if (uses_odometry_hold_) {
+    held = ros_bridge::odometry_held_from_ros(*group.get<OdometryHold>(hold_slot()),
+                                              topic(hold_slot()));
   }
   {
     std::lock_guard<std::mutex> lock(mapping_mutex_);
     const UseWorkers use_workers(workers_.get());
     mapping_->process(features, odometry_pose, group.stamp.toSec(), prior, out_,
-                      sensors ? &*sensors : nullptr, scene_);
+                      sensors ? &*sensors : nullptr, scene_, held);
     sensor_frame_ = odometry->child_frame_id.empty() ? frames_.sensor : odometry->child_frame_id;
     if (out_.match.matched)
       degenerate_state_.update(weakest_direction(out_.match, scene_, config_.mapping).sigma);

@@ -6,6 +6,7 @@
 
 #include <adaptive_lego_loam/DegenerationState.h>
 #include <adaptive_lego_loam/MotionPriors.h>
+#include <adaptive_lego_loam/OdometryHold.h>
 #include <adaptive_lego_loam/SaveMap.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -40,8 +41,11 @@ class MapOptimizationNode {
  private:
   // /degeneration is paired with every scan: the scene's weak direction and mu weigh the
   // weak-direction prior, the motion sensors' priors and the pose's covariance. /motion_priors
-  // only with motion sensors.
-  enum Slot : std::size_t { kCorners, kSurfaces, kOutliers, kOdometry, kDegeneration, kPriors };
+  // only with motion sensors, /odometry_hold only with the follow test, in that order after the
+  // fixed slots.
+  enum Slot : std::size_t { kCorners, kSurfaces, kOutliers, kOdometry, kDegeneration };
+  std::size_t priors_slot() const { return kDegeneration + 1; }
+  std::size_t hold_slot() const { return kDegeneration + 1 + uses_motion_sensors_; }
 
   void on_corners(const sensor_msgs::PointCloud2ConstPtr& msg) { add(kCorners, msg->header, msg); }
   void on_surfaces(const sensor_msgs::PointCloud2ConstPtr& msg) {
@@ -54,7 +58,8 @@ class MapOptimizationNode {
   void on_degeneration(const DegenerationStateConstPtr& msg) {
     add(kDegeneration, msg->header, msg);
   }
-  void on_motion_priors(const MotionPriorsConstPtr& msg) { add(kPriors, msg->header, msg); }
+  void on_motion_priors(const MotionPriorsConstPtr& msg) { add(priors_slot(), msg->header, msg); }
+  void on_odometry_hold(const OdometryHoldConstPtr& msg) { add(hold_slot(), msg->header, msg); }
   void on_initial_pose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool on_save_map(SaveMap::Request& request, SaveMap::Response& response);
 
@@ -87,6 +92,7 @@ class MapOptimizationNode {
   std::unique_ptr<Workers> workers_;  // ~threads: the searches shared (none: this thread)
   MappingOutput out_;
   bool uses_motion_sensors_;  // ~motion_sensors: feature_association sends /motion_priors
+  bool uses_odometry_hold_;   // the follow test: feature_association sends /odometry_hold
   std::optional<SceneDegeneration> scene_;  // the scan being mapped's, from /degeneration
   DegeneracyTracker degenerate_state_;      // what /diagnostics says, with hysteresis
   ros_bridge::FrameNames frames_;

@@ -4,7 +4,7 @@
 // Compares the mapped poses with run_sequence's on the same bag (~reference, its output folder) and
 // /diagnostics with its summary.json. The Drive suite plays the fault-free drive; the Faults suite
 // (drive:=faults) the same drive with faulty samples, and also compares with the fault-free run
-// (~clean_reference).
+// (~clean_reference). drive:=tunnel plays a bare tunnel with the follow test on in the Drive suite.
 
 #include <diagnostic_msgs/DiagnosticStatus.h>
 #include <gtest/gtest.h>
@@ -208,6 +208,20 @@ TEST_F(Drive, MapOptimizationPairsTheMotionPriors) {
   EXPECT_EQ(
       std::count(run_.priors_subscribers.begin(), run_.priors_subscribers.end(), mapping_node), 1)
       << mapping_node;
+}
+
+// The follow test's holds (~follow_test: the tunnel drive, the others have it off) as the offline
+// run's: with the poses the same, map_optimization held what run_sequence's scan-to-map held.
+TEST_F(Drive, TheOdometryHeldTheScansRunSequenceHeld) {
+  const long held = run_.summary["odometry_held_scans"].get<long>();
+  if (!ros::NodeHandle("~").param("follow_test", false)) {
+    EXPECT_EQ(held, 0);
+    return;
+  }
+  EXPECT_GT(held, 0) << "a bare tunnel the follow test does not hold in";
+  ASSERT_TRUE(run_.saw_final_counts) << sensor_value(run_.recording, "IMU scans used");
+  EXPECT_EQ(sensor_value(run_.recording, "scans held along their travel (follow test, total)"),
+            std::to_string(held));
 }
 
 // The bag's /tf_static (lidar_sim's) looked up as feature_association looks it up and turned into

@@ -273,6 +273,7 @@ void read_odometry(SectionReader& in, OdometryParams& o) {
   in.number("residual_sigma", o.residual_sigma, 1e-4, 10.0);
   in.number("follow_test_shift", o.follow_test_shift, 0.0, 10.0);
   in.number("follow_test_max", o.follow_test_max, 0.0, 10.0);
+  in.number("follow_test_still_speed", o.follow_test_still_speed, 0.0, 100.0);
   in.reject_unknown_keys();
 }
 

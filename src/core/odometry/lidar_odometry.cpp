@@ -14,7 +14,7 @@ LidarOdometry::LidarOdometry(const SensorParams& sensor, const FeatureParams& fe
     : sensor_(sensor),
       params_(odometry),
       extractor_(features),
-      registration_(odometry, sensor.beam_angles_deg) {}
+      registration_(odometry, sensor.beam_angles_deg, sensor.scan_period) {}
 
 void LidarOdometry::process(const SegmentedCloud& cloud, bool has_time, OdometryOutput& out,
                             const MotionPrediction* sensors, const FeatureSelection* selection) {

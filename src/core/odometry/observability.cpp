@@ -43,6 +43,11 @@ Eigen::Matrix<double, 6, 6> discounted_along(const Eigen::Matrix<double, 6, 6>& 
   return scale * information * scale;
 }
 
+Eigen::Vector3d held_along(const Eigen::Vector3d& translation, const Eigen::Vector3d& held,
+                           const Eigen::Vector3d& direction) {
+  return translation + direction.dot(held - translation) * direction;
+}
+
 Eigen::Matrix<double, 6, 6> covariance_from_information(
     const Eigen::Matrix<double, 6, 6>& information, double unknown_variance) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(

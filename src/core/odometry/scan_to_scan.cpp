@@ -47,8 +47,9 @@ std::vector<double> ring_spacing_rad(const std::vector<double>& beam_angles_deg)
 }  // namespace
 
 ScanToScanOdometry::ScanToScanOdometry(const OdometryParams& params,
-                                       const std::vector<double>& beam_angles_deg)
-    : params_(params) {
+                                       const std::vector<double>& beam_angles_deg,
+                                       double scan_period)
+    : params_(params), scan_period_(scan_period) {
   if (!(params.range_weight_fit_error > 0.0)) return;
   constexpr double kReferenceRange = 10.0;  // m
   for (double spacing : ring_spacing_rad(beam_angles_deg)) {
@@ -240,12 +241,35 @@ void ScanToScanOdometry::follow_test(const FeatureSet& current, const Eigen::Iso
   const OdometryResult other = align(current, shifted, iterations);
   if (!other.registered) return;
   result.follow = direction.dot(other.motion.translation() - result.motion.translation()) / shift;
-  if (result.follow <= params_.follow_test_max) return;
-  result.motion.translation() +=
-      direction.dot(guess.translation() - result.motion.translation()) * direction;
+  if (result.follow <= params_.follow_test_max &&
+      !follows_from_still(current, guess, iterations, result))
+    return;
+  result.motion.translation() =
+      held_along(result.motion.translation(), guess.translation(), direction);
   result.information =
       discounted_along(result.information, result.motion.linear().transpose() * direction, 0.0);
   result.held_direction = direction;
+}
+
+// Slowing down in a tunnel, the pull toward standing still can be as strong as the shift: the
+// result falls back from the guess and a shifted guess falls back as far. Registered from standing
+// still instead, a scan that sees its motion comes to the same result; a blind one stays near
+// where it started.
+bool ScanToScanOdometry::follows_from_still(const FeatureSet& current,
+                                            const Eigen::Isometry3d& guess, int iterations,
+                                            const OdometryResult& result) const {
+  const Eigen::Vector3d direction = guess.translation().normalized();
+  const double guessed = direction.dot(guess.translation());
+  if (guessed >= params_.follow_test_still_speed * scan_period_) return false;
+  // Only a scan that slows down: one that speeds up is not pulled toward standing still.
+  if (direction.dot(result.motion.translation()) >= guessed) return false;
+  Eigen::Isometry3d still = guess;
+  still.translation() -= guessed * direction;
+  const OdometryResult from_still = align(current, still, iterations);
+  if (!from_still.registered) return false;
+  const double kept =
+      direction.dot(result.motion.translation() - from_still.motion.translation()) / guessed;
+  return kept > params_.follow_test_max;
 }
 
 std::vector<OdometryResult> ScanToScanOdometry::align_each(

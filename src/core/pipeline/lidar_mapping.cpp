@@ -22,11 +22,12 @@ Config localization_config(Config config) {
 }
 
 // `pose` with its motion from `previous` along `direction` (previous' frame) as `predicted`'s.
-Eigen::Isometry3d held_along(const Eigen::Isometry3d& previous, const Eigen::Isometry3d& predicted,
-                             const Eigen::Isometry3d& pose, const Eigen::Vector3d& direction) {
+Eigen::Isometry3d pose_held_along(const Eigen::Isometry3d& previous,
+                                  const Eigen::Isometry3d& predicted, const Eigen::Isometry3d& pose,
+                                  const Eigen::Vector3d& direction) {
   Eigen::Isometry3d motion = previous.inverse() * pose;
   const Eigen::Vector3d predicted_step = (previous.inverse() * predicted).translation();
-  motion.translation() += direction.dot(predicted_step - motion.translation()) * direction;
+  motion.translation() = held_along(motion.translation(), predicted_step, direction);
   Eigen::Isometry3d held = previous * motion;
   held.linear() = Eigen::Quaterniond(held.linear()).normalized().toRotationMatrix();
   return held;
@@ -328,10 +329,11 @@ void LidarMapping::process(const FeatureSet& features, const Eigen::Isometry3d& 
       out.localization && out.localization->alignment && out.localization->alignment->accepted();
   if (odometry_held && !aligned) {
     // Where the odometry found the scan blind, the map's rings pull toward standing still too.
-    pose = held_along(previous_pose, predicted_pose, pose, *odometry_held);
+    pose = pose_held_along(previous_pose, predicted_pose, pose, *odometry_held);
     out.match.information =
         discounted_along(out.match.information,
                          pose.linear().transpose() * previous_pose.linear() * *odometry_held, 0.0);
+    out.match.odometry_held = true;
   }
   pose_ = pose;
   if (sensors && sensors->gravity) map_gravity_.add(pose_.linear(), *sensors->gravity);

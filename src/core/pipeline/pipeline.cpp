@@ -71,8 +71,9 @@ WeakestDirection weakest_direction(const MapMatchResult& match,
   weakest.direction = seen.weakest_direction();
   weakest.sigma = seen.weakest_sigma();
   weakest.degenerate = !(weakest.sigma <= params.degenerate_translation_sigma);
-  weakest.held = weakest.degenerate && match.motion_prior;
-  if (weakest.held) weakest.held_by = prior_sources(match);
+  weakest.held = weakest.degenerate && (match.motion_prior || match.odometry_held);
+  if (weakest.held)
+    weakest.held_by = match.motion_prior ? prior_sources(match) : "the motion model";
   return weakest;
 }
 

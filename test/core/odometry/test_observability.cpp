@@ -60,3 +60,14 @@ TEST(Observability, CovarianceInvertsTheInformationAndCapsWhatItLeavesOpen) {
   const Eigen::Vector3d across(-along.y(), along.x(), 0.0);
   EXPECT_NEAR(across.dot(open.bottomRightCorner<3, 3>() * across), 1e-4, 1e-9);
 }
+
+TEST(Observability, HeldAlongTakesTheHeldComponentAndKeepsTheRest) {
+  const Eigen::Vector3d direction = Eigen::Vector3d(1.0, 1.0, 0.0).normalized();
+  const Eigen::Vector3d registered(0.2, 0.1, 0.05);  // fell back toward standing still
+  const Eigen::Vector3d guess(1.0, 1.0, 0.0);
+  const Eigen::Vector3d held = held_along(registered, guess, direction);
+  EXPECT_NEAR(direction.dot(held), direction.dot(guess), 1e-12);
+  const Eigen::Vector3d across = Eigen::Vector3d(1.0, -1.0, 0.0).normalized();
+  EXPECT_NEAR(across.dot(held), across.dot(registered), 1e-12);
+  EXPECT_NEAR(held.z(), registered.z(), 1e-12);
+}

@@ -196,6 +196,8 @@ TEST(Pipeline, TheWeakestDirectionIsDegenerateBeyondTheThresholdAndSaysWhatHeldI
   EXPECT_NEAR(weakest.sigma, 1.0, 1e-6);
   EXPECT_TRUE(weakest.degenerate);
   EXPECT_FALSE(weakest.held);
+  match.odometry_held = true;  // the follow test's hold, LiDAR-only
+  EXPECT_EQ(weakest_direction(match, std::nullopt, params).held_by, "the motion model");
   match.motion_prior = true;
   match.prior_from_wheel = true;
   EXPECT_TRUE(weakest_direction(match, std::nullopt, params).held);

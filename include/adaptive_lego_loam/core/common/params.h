@@ -170,6 +170,12 @@ struct OdometryParams {
   // scan-to-map. 0: off.
   double follow_test_shift = 0.0;
   double follow_test_max = 0.5;
+  // m/s: a scan that passes the follow test but slows down (its result short of the guess) while
+  // the guess is slower than this is registered a third time, from standing still; where that
+  // ends more than follow_test_max of the guessed travel short of the result, the result follows
+  // its start (a tunnel where the pull toward standing still is as strong as the shift) and is
+  // held. 0: no third registration.
+  double follow_test_still_speed = 10.0;
 };
 
 // Scan-to-map matching and keyframes (LeGO-LOAM's mapOptimization).

@@ -30,6 +30,9 @@ struct MapMatchResult {
   Matrix6d information = Matrix6d::Zero();
   bool motion_prior = false;  // the motion sensors' motion prior took part
   bool prior_from_imu = false, prior_from_wheel = false;  // what made it (MotionPrior's)
+  // The pose kept the prediction along the direction the odometry's follow test held (the motion
+  // model's), and `information` says nothing of it (LidarMapping::process).
+  bool odometry_held = false;
   // What the motion sensors' priors added (the motion prior on the directions it held, gravity
   // on roll and pitch), in the units and frame of `information`.
   Matrix6d prior_information = Matrix6d::Zero();

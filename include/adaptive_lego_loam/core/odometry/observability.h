@@ -39,4 +39,9 @@ Eigen::Matrix<double, 6, 6> covariance_from_information(
 Eigen::Matrix<double, 6, 6> discounted_along(const Eigen::Matrix<double, 6, 6>& information,
                                              const Eigen::Vector3d& direction, double keep);
 
+// `translation` with its component along the unit `direction` taken from `held`: a motion held at
+// its guess along a direction the scan does not fix (the follow test), free across it.
+Eigen::Vector3d held_along(const Eigen::Vector3d& translation, const Eigen::Vector3d& held,
+                           const Eigen::Vector3d& direction);
+
 }  // namespace adaptive_lego_loam

@@ -43,8 +43,10 @@ class ScanToScanOdometry {
  public:
   // `beam_angles_deg` (the sensor's, ascending) set the ring spacing of the range weighting
   // (OdometryParams::range_weight_fit_error); without them every correspondence weighs the same.
+  // `scan_period` (s) turns the follow test's speed into travel a scan.
   explicit ScanToScanOdometry(const OdometryParams& params,
-                              const std::vector<double>& beam_angles_deg = {});
+                              const std::vector<double>& beam_angles_deg = {},
+                              double scan_period = 0.1);
   // Registers `current` against the previous scan's features, starting from `guess` (the motion
   // from the previous scan to this one); then keeps `current` as the previous scan.
   OdometryResult register_scan(const FeatureSet& current, const Eigen::Isometry3d& guess);
@@ -63,6 +65,10 @@ class ScanToScanOdometry {
   // OdometryParams::follow_test_shift on `result`, registered from `guess`.
   void follow_test(const FeatureSet& current, const Eigen::Isometry3d& guess, int iterations,
                    OdometryResult& result) const;
+  // OdometryParams::follow_test_still_speed: `result` (from `guess`) slowed down, and registered
+  // from standing still `current` ends more than follow_test_max of the guessed travel short of it.
+  bool follows_from_still(const FeatureSet& current, const Eigen::Isometry3d& guess, int iterations,
+                          const OdometryResult& result) const;
   // Each point's correspondence (when it has one), in the points' order.
   void find_edge_matches(const Cloud& sharp, const Eigen::Isometry3d& pose,
                          Correspondences& matches) const;
@@ -87,6 +93,7 @@ class ScanToScanOdometry {
   double range_scale(const CloudPoint& p) const;
 
   OdometryParams params_;
+  double scan_period_;                           // s
   std::vector<RangeWeighting> range_weighting_;  // per row; empty: no range weighting
   bool first_pair_ = true;
   CloudPtr previous_corners_, previous_surfaces_;

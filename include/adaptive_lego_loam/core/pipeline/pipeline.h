@@ -68,13 +68,15 @@ Matrix6d mapped_pose_covariance(const MapMatchResult& match, bool starts_map,
 bool starts_map(const MappingOutput& mapped);
 // The translation direction a matched scan's correspondences fix worst (sensor frame) and their
 // 1-sigma along it (m; the scene's weak direction counted as above): degenerate beyond
-// mapping.degenerate_translation_sigma, and then held or not by the motion sensors' prior.
+// mapping.degenerate_translation_sigma, and then held or not by the motion sensors' prior or, where
+// the odometry's follow test held the scan, by the motion model.
 struct WeakestDirection {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
   double sigma = 0.0;
   bool degenerate = false;
   bool held = false;
-  std::string held_by;  // "the IMU", "the wheel odometry", "the IMU and the wheel odometry"
+  // "the IMU", "the wheel odometry", "the IMU and the wheel odometry", "the motion model"
+  std::string held_by;
 };
 WeakestDirection weakest_direction(const MapMatchResult& match,
                                    const std::optional<SceneDegeneration>& scene,
